@@ -1,0 +1,51 @@
+//! The interface every 2D field exposes to queries, physics and renderers.
+
+use glam::Vec2;
+
+/// A material index into a level's palette.
+pub type MaterialId = u16;
+
+/// The field at one point: distance, analytic gradient, and the material that won there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Signed distance (negative inside solid terrain), exact or a bound (see the field).
+    pub distance: f32,
+    /// Gradient of `distance` at the point (unit length where the distance is exact and
+    /// differentiable; zero where undefined, e.g. on a medial axis or in a clamped region).
+    pub gradient: Vec2,
+    /// Material of the nearest/winning surface.
+    pub material: MaterialId,
+}
+
+/// A 2D signed distance field.
+///
+/// Implementations are deterministic: the same point gives the same bits on every platform,
+/// and `sample(p).distance` is bit-identical to `distance(p)`.
+pub trait Sdf {
+    /// Signed distance at `p` (negative inside).
+    fn distance(&self, p: Vec2) -> f32;
+    /// Distance, gradient and material at `p`, in one pass.
+    fn sample(&self, p: Vec2) -> Sample;
+    /// Distance and material without the gradient (cheaper where only colour is needed).
+    fn distance_material(&self, p: Vec2) -> (f32, MaterialId) {
+        let s = self.sample(p);
+        (s.distance, s.material)
+    }
+    /// An upper bound on `|distance(a) - distance(b)| / |a - b|` (1 for exact fields).
+    fn lipschitz(&self) -> f32;
+}
+
+impl<T: Sdf + ?Sized> Sdf for &T {
+    fn distance(&self, p: Vec2) -> f32 {
+        (**self).distance(p)
+    }
+    fn sample(&self, p: Vec2) -> Sample {
+        (**self).sample(p)
+    }
+    fn distance_material(&self, p: Vec2) -> (f32, MaterialId) {
+        (**self).distance_material(p)
+    }
+    fn lipschitz(&self) -> f32 {
+        (**self).lipschitz()
+    }
+}

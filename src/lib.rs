@@ -1,0 +1,10 @@
+//! craterfield: destructible 2D terrain on signed distance fields.
+//!
+//! The field ([`field2d`]) is a level graph of SDF primitives and operators minus carved
+//! circles plus filled circles, kept in an explosion grid so that a query reads only its cell.
+//! Everything on the collision path is bit-for-bit deterministic (see `DESIGN.md`).
+#![warn(missing_docs)]
+
+pub mod field2d;
+#[cfg(feature = "raster")]
+pub mod render2d;

@@ -1,0 +1,178 @@
+//! Full-resolution exact rendering on the CPU: the field is evaluated at every pixel centre,
+//! thresholded at zero with a one-pixel anti-aliasing ramp, and shaded by material, depth and
+//! the surface normal.
+//!
+//! This is the reference image (not a fast path): tiles whose centre distance proves them
+//! all-sky are filled without per-pixel work, others evaluate every pixel, on all cores.
+
+use glam::Vec2;
+use image::RgbaImage;
+
+use super::camera::Camera;
+use crate::field2d::Sdf;
+
+/// Shading parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExactRenderOptions {
+    /// Sky colour at the top and bottom of the image.
+    pub sky_top: [u8; 3],
+    /// Sky colour at the bottom.
+    pub sky_bottom: [u8; 3],
+    /// Width of the dark outline inside the surface, pixels.
+    pub outline_px: f32,
+    /// Depth over which the interior darkens, pixels.
+    pub shade_depth_px: f32,
+    /// Direction the light comes from (world space, normalized internally).
+    pub light: Vec2,
+    /// Worker threads (0 = all cores).
+    pub threads: usize,
+}
+
+impl Default for ExactRenderOptions {
+    fn default() -> Self {
+        ExactRenderOptions {
+            sky_top: [40, 64, 112],
+            sky_bottom: [150, 180, 214],
+            outline_px: 1.5,
+            shade_depth_px: 28.0,
+            light: Vec2::new(-0.35, 0.94),
+            threads: 0,
+        }
+    }
+}
+
+const TILE: u32 = 8;
+
+/// Render `field` through `camera`, colouring material `i` with `palette[i]` (unknown
+/// materials are drawn magenta so they stand out).
+pub fn render_exact<F: Sdf + Sync>(
+    field: &F,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    opts: &ExactRenderOptions,
+) -> RgbaImage {
+    let (w, h) = (camera.width, camera.height);
+    let mut img = RgbaImage::new(w, h);
+    let tiles_y = h.div_ceil(TILE);
+    let threads = match opts.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    };
+    let row_bytes = (w * 4) as usize;
+    let band_bytes = row_bytes * TILE as usize;
+    let bands: Vec<(u32, &mut [u8])> = img
+        .chunks_mut(band_bytes)
+        .enumerate()
+        .map(|(i, b)| (i as u32, b))
+        .collect();
+    let per_thread = (tiles_y as usize).div_ceil(threads).max(1);
+    let mut groups: Vec<Vec<(u32, &mut [u8])>> = Vec::new();
+    let mut bands = bands.into_iter().peekable();
+    while bands.peek().is_some() {
+        groups.push(bands.by_ref().take(per_thread).collect());
+    }
+    let shader = Shader {
+        field,
+        palette,
+        camera,
+        opts,
+        light: opts.light.normalize_or(Vec2::Y),
+    };
+    std::thread::scope(|s| {
+        for group in groups {
+            let shader = &shader;
+            s.spawn(move || {
+                for (band, bytes) in group {
+                    shader.band(band, bytes);
+                }
+            });
+        }
+    });
+    img
+}
+
+struct Shader<'a, F> {
+    field: &'a F,
+    palette: &'a [[u8; 3]],
+    camera: &'a Camera,
+    opts: &'a ExactRenderOptions,
+    light: Vec2,
+}
+
+impl<F: Sdf> Shader<'_, F> {
+    fn band(&self, band: u32, bytes: &mut [u8]) {
+        let w = self.camera.width;
+        let y0 = band * TILE;
+        let rows = (bytes.len() / (w as usize * 4)) as u32;
+        let upp = self.camera.units_per_pixel;
+        let lipschitz = self.field.lipschitz().max(1.0);
+        for tx in 0..w.div_ceil(TILE) {
+            let x0 = tx * TILE;
+            let cx = (x0 + TILE / 2).min(w - 1);
+            let cy = (y0 + TILE / 2).min(y0 + rows - 1);
+            let d_center = self.field.distance(self.camera.pixel_to_world(cx, cy)) / upp;
+            // Every pixel of the tile is within this many pixels of the centre.
+            let reach = TILE as f32 * std::f32::consts::SQRT_2 * lipschitz;
+            let all_sky = d_center - reach > 1.0;
+            for y in y0..y0 + rows {
+                for x in x0..(x0 + TILE).min(w) {
+                    let rgb = if all_sky {
+                        self.sky(y)
+                    } else {
+                        self.pixel(x, y)
+                    };
+                    let i = (((y - y0) * w + x) * 4) as usize;
+                    bytes[i..i + 4].copy_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
+                }
+            }
+        }
+    }
+
+    fn sky(&self, y: u32) -> [u8; 3] {
+        let t = y as f32 / self.camera.height.max(1) as f32;
+        mix(self.opts.sky_top, self.opts.sky_bottom, t)
+    }
+
+    fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        let p = self.camera.pixel_to_world(x, y);
+        let upp = self.camera.units_per_pixel;
+        let (d, material) = self.field.distance_material(p);
+        let d_px = d / upp;
+        let coverage = (0.5 - d_px).clamp(0.0, 1.0);
+        let sky = self.sky(y);
+        if coverage <= 0.0 {
+            return sky;
+        }
+        let base = self
+            .palette
+            .get(material as usize)
+            .copied()
+            .unwrap_or([255, 0, 255]);
+        let depth = (-d_px / self.opts.shade_depth_px).clamp(0.0, 1.0);
+        let mut color = scale(base, 1.0 - 0.4 * depth);
+        let near_surface = d_px > -(self.opts.shade_depth_px * 0.5);
+        if near_surface {
+            let g = self.field.sample(p).gradient;
+            let lit = if g.length_squared() > 0.0 {
+                g.normalize().dot(self.light)
+            } else {
+                0.0
+            };
+            // Surfaces facing the light get a bright rim, others a darker one.
+            let rim = (1.0 + d_px / (self.opts.shade_depth_px * 0.5)).clamp(0.0, 1.0);
+            color = scale(color, 1.0 + 0.35 * lit * rim);
+        }
+        let outline = ((d_px + self.opts.outline_px + 0.5).clamp(0.0, 1.0)) * coverage;
+        color = mix(color, scale(base, 0.35), outline);
+        mix(sky, color, coverage)
+    }
+}
+
+fn scale(c: [u8; 3], k: f32) -> [u8; 3] {
+    c.map(|v| (v as f32 * k).round().clamp(0.0, 255.0) as u8)
+}
+
+fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
+    let t = t.clamp(0.0, 1.0);
+    [0, 1, 2].map(|i| (a[i] as f32 + (b[i] as f32 - a[i] as f32) * t).round() as u8)
+}
