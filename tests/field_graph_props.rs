@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use craterfield::field2d::{Exactness, Graph, Level, Node, NodeId, Sdf};
+use craterfield::field2d::{Exactness, Graph, Level, Node, NodeId};
 use glam::Vec2;
 use proptest::prelude::*;
 

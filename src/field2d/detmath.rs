@@ -345,7 +345,7 @@ impl<N: Num> V2<N> {
     }
     /// Component-wise difference.
     #[inline(always)]
-    pub fn sub(self, o: Self) -> Self {
+    pub fn minus_v(self, o: Self) -> Self {
         V2 {
             x: self.x - o.x,
             y: self.y - o.y,

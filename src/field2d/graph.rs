@@ -429,7 +429,7 @@ impl Compiler<'_> {
                 let b = self.point(path, "b", *b)?;
                 let th = self.positive(path, "thickness", *thickness)?;
                 let len = (b - a).length();
-                if !(len > 0.0) {
+                if len.is_nan() || len <= 0.0 {
                     return Err(invalid(path, "b", "is degenerate: a and b coincide".into()));
                 }
                 let dir = (b - a) / len;
@@ -529,7 +529,7 @@ impl Compiler<'_> {
                 let p = self.point(path, "point", *point)?;
                 let n = self.point(path, "normal", *normal)?;
                 let len = n.length();
-                if !(len > 0.0) {
+                if len.is_nan() || len <= 0.0 {
                     return Err(invalid(
                         path,
                         "normal",
@@ -1144,8 +1144,9 @@ fn check_simple_polygon(pts: &[Vec2]) -> Result<(), String> {
                 }
             }
         }
-    } else if n == 4 && segments_intersect(pts[0], pts[1], pts[2], pts[3])
-        || n == 4 && segments_intersect(pts[1], pts[2], pts[3], pts[0])
+    } else if n == 4
+        && (segments_intersect(pts[0], pts[1], pts[2], pts[3])
+            || segments_intersect(pts[1], pts[2], pts[3], pts[0]))
     {
         return Err("polygon is not simple: its edges cross".into());
     }

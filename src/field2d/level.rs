@@ -157,7 +157,10 @@ impl Level {
             }
         }
         for (axis, lo, hi) in [("x", b.min[0], b.max[0]), ("y", b.min[1], b.max[1])] {
-            if !(hi - lo >= 16.0) {
+            if (hi - lo)
+                .partial_cmp(&16.0)
+                .is_none_or(|o| o == std::cmp::Ordering::Less)
+            {
                 return Err(invalid(
                     "bounds",
                     format!(
@@ -260,13 +263,13 @@ impl Level {
 /// Every `Material` id must index the palette.
 fn check_materials(node: &Node, path: &str, count: usize) -> Result<(), LevelError> {
     let here = format!("{path}.{}", node.kind());
-    if let Node::Material { id, .. } = node {
-        if *id as usize >= count {
-            return Err(LevelError::Invalid {
-                path: format!("{here}.id"),
-                reason: format!("material {id} is not in the palette of {count} materials"),
-            });
-        }
+    if let Node::Material { id, .. } = node
+        && *id as usize >= count
+    {
+        return Err(LevelError::Invalid {
+            path: format!("{here}.id"),
+            reason: format!("material {id} is not in the palette of {count} materials"),
+        });
     }
     for (label, child) in node.children() {
         check_materials(child, &format!("{here}{label}"), count)?;

@@ -218,7 +218,8 @@ pub fn ground_height(pts: &[Vec2], dx: f32, x: f32) -> f32 {
     let (Some(&first), Some(&last)) = (pts.first(), pts.last()) else {
         return f32::NEG_INFINITY;
     };
-    if !(x > first.x) {
+    // `<=` and NaN both take the left end.
+    if x.is_nan() || x <= first.x {
         return first.y;
     }
     if x >= last.x {

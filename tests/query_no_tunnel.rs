@@ -1,0 +1,510 @@
+//! No-tunnelling property tests for ray casts and swept circles: random thin features, random
+//! paths of any length, compared with dense sampling of the true geometry along the path.
+
+use craterfield::field2d::query::{QueryError, RayOptions, raycast, sweep_circle};
+use craterfield::field2d::{Sample, Sdf};
+use glam::Vec2;
+use proptest::prelude::*;
+
+type P = [f64; 2];
+
+fn sub(a: P, b: P) -> P {
+    [a[0] - b[0], a[1] - b[1]]
+}
+fn dot(a: P, b: P) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+fn len(a: P) -> f64 {
+    dot(a, a).sqrt()
+}
+fn p64(v: Vec2) -> P {
+    [v.x as f64, v.y as f64]
+}
+
+/// A thin feature with an exact signed distance (computed in f64).
+#[derive(Clone, Debug)]
+enum Shape {
+    /// Segment `a-b` inflated by `r`.
+    Capsule { a: P, b: P, r: f64 },
+    /// Box centred at `c` with unit axis `u` and half extents `h` (along `u`, across).
+    Box { c: P, u: P, h: P },
+}
+
+impl Shape {
+    /// Exact distance and gradient.
+    fn exact(&self, p: P) -> (f64, P) {
+        match *self {
+            Shape::Capsule { a, b, r } => {
+                let pa = sub(p, a);
+                let ba = sub(b, a);
+                let h = (dot(pa, ba) / dot(ba, ba)).clamp(0.0, 1.0);
+                let v = [pa[0] - ba[0] * h, pa[1] - ba[1] * h];
+                let l = len(v);
+                let g = if l > 0.0 {
+                    [v[0] / l, v[1] / l]
+                } else {
+                    [0.0, 0.0]
+                };
+                (l - r, g)
+            }
+            Shape::Box { c, u, h } => {
+                let w = [-u[1], u[0]];
+                let d = sub(p, c);
+                let local = [dot(d, u), dot(d, w)];
+                let q = [local[0].abs() - h[0], local[1].abs() - h[1]];
+                let sx = if local[0] < 0.0 { -1.0 } else { 1.0 };
+                let sy = if local[1] < 0.0 { -1.0 } else { 1.0 };
+                let (dist, gl) = if q[0] > 0.0 || q[1] > 0.0 {
+                    let o = [q[0].max(0.0), q[1].max(0.0)];
+                    let l = len(o);
+                    (l, [o[0] * sx / l, o[1] * sy / l])
+                } else if q[0] > q[1] {
+                    (q[0], [sx, 0.0])
+                } else {
+                    (q[1], [0.0, sy])
+                };
+                (
+                    dist,
+                    [gl[0] * u[0] + gl[1] * w[0], gl[0] * u[1] + gl[1] * w[1]],
+                )
+            }
+        }
+    }
+
+    /// Bounding circle.
+    fn bound(&self) -> (P, f64) {
+        match *self {
+            Shape::Capsule { a, b, r } => (
+                [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0],
+                len(sub(b, a)) / 2.0 + r,
+            ),
+            Shape::Box { c, h, .. } => (c, len(h)),
+        }
+    }
+
+    /// Thinnest dimension.
+    fn width(&self) -> f64 {
+        match *self {
+            Shape::Capsule { r, .. } => 2.0 * r,
+            Shape::Box { h, .. } => 2.0 * h[0].min(h[1]),
+        }
+    }
+}
+
+/// How the scene's exact distance is turned into the field handed to the queries.
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    /// Exact (L = 1).
+    Exact,
+    /// `2 * exact`, declared L = 2.
+    Double,
+    /// `0.5 * exact`, a bound declared L = 1.
+    Half,
+    /// `clamp(exact, -4, 4)`: saturated far away with a zero gradient there, L = 1.
+    Clamped,
+}
+
+#[derive(Clone, Debug)]
+struct Scene {
+    shapes: Vec<Shape>,
+    kind: Kind,
+}
+
+impl Scene {
+    fn exact(&self, p: P) -> (f64, P) {
+        let mut best = (f64::INFINITY, [0.0, 0.0]);
+        for s in &self.shapes {
+            let e = s.exact(p);
+            if e.0 < best.0 {
+                best = e;
+            }
+        }
+        best
+    }
+}
+
+impl Sdf for Scene {
+    fn distance(&self, p: Vec2) -> f32 {
+        self.sample(p).distance
+    }
+    fn sample(&self, p: Vec2) -> Sample {
+        let (d, g) = self.exact(p64(p));
+        let (d, g) = match self.kind {
+            Kind::Exact => (d, g),
+            Kind::Double => (2.0 * d, [2.0 * g[0], 2.0 * g[1]]),
+            Kind::Half => (0.5 * d, [0.5 * g[0], 0.5 * g[1]]),
+            Kind::Clamped if d > 4.0 => (4.0, [0.0, 0.0]),
+            Kind::Clamped if d < -4.0 => (-4.0, [0.0, 0.0]),
+            Kind::Clamped => (d, g),
+        };
+        Sample {
+            distance: d as f32,
+            gradient: Vec2::new(g[0] as f32, g[1] as f32),
+            material: 0,
+        }
+    }
+    fn lipschitz(&self) -> f32 {
+        match self.kind {
+            Kind::Double => 2.0,
+            _ => 1.0,
+        }
+    }
+}
+
+/// First `s` in `[0, max_s]` where dense sampling finds `exact(from + dir * s) < radius`,
+/// sampling each shape's neighbourhood with a step of a tenth of its width.
+fn first_crossing(scene: &Scene, from: P, dir: P, max_s: f64, radius: f64) -> Option<f64> {
+    let mut first: Option<f64> = None;
+    for shape in &scene.shapes {
+        let (c, r) = shape.bound();
+        let reach = r + radius + 0.01;
+        // The interval of s where the path is within `reach` of the bounding circle's centre.
+        let oc = sub(c, from);
+        let mid = dot(oc, dir);
+        let perp2 = dot(oc, oc) - mid * mid;
+        if perp2 > reach * reach {
+            continue;
+        }
+        let half = (reach * reach - perp2).max(0.0).sqrt();
+        let s0 = (mid - half).max(0.0);
+        let s1 = (mid + half).min(max_s);
+        if s0 > s1 {
+            continue;
+        }
+        let h = shape.width() / 10.0;
+        let n = ((s1 - s0) / h).ceil() as usize;
+        for k in 0..=n {
+            let s = (s0 + k as f64 * h).min(s1);
+            if first.is_some_and(|f| s >= f) {
+                break;
+            }
+            let p = [from[0] + dir[0] * s, from[1] + dir[1] * s];
+            if shape.exact(p).0 < radius {
+                first = Some(s);
+                break;
+            }
+        }
+    }
+    first
+}
+
+fn shape_strategy() -> impl Strategy<Value = Shape> {
+    (
+        any::<bool>(),
+        -20.0f64..20.0,
+        -20.0f64..20.0,
+        0.0f64..std::f64::consts::TAU,
+        0.0f64..20.0,
+        0.05f64..3.0,
+    )
+        .prop_map(|(capsule, x, y, angle, length, width)| {
+            let u = [angle.cos(), angle.sin()];
+            if capsule {
+                let a = [x - u[0] * length / 2.0, y - u[1] * length / 2.0];
+                let b = [x + u[0] * length / 2.0, y + u[1] * length / 2.0];
+                Shape::Capsule {
+                    a,
+                    b,
+                    r: width / 2.0,
+                }
+            } else {
+                Shape::Box {
+                    c: [x, y],
+                    u,
+                    h: [(length + width) / 2.0, width / 2.0],
+                }
+            }
+        })
+}
+
+fn scene_strategy() -> impl Strategy<Value = Scene> {
+    (
+        prop::collection::vec(shape_strategy(), 1..6),
+        prop_oneof![
+            Just(Kind::Exact),
+            Just(Kind::Double),
+            Just(Kind::Half),
+            Just(Kind::Clamped)
+        ],
+    )
+        .prop_map(|(shapes, kind)| Scene { shapes, kind })
+}
+
+/// A path: origin, unit direction, length (log-uniform from 0.1 to 1e5).
+fn path_strategy() -> impl Strategy<Value = (Vec2, Vec2, f32)> {
+    (
+        -40.0f32..40.0,
+        -40.0f32..40.0,
+        0.0f64..std::f64::consts::TAU,
+        -1.0f64..5.0,
+    )
+        .prop_map(|(x, y, angle, e)| {
+            (
+                Vec2::new(x, y),
+                Vec2::new(angle.cos() as f32, angle.sin() as f32),
+                10f64.powf(e) as f32,
+            )
+        })
+}
+
+const OPTS: RayOptions = RayOptions {
+    max_steps: 1_000_000,
+    hit_epsilon: 1e-3,
+};
+const TOL: f64 = 1e-3;
+
+/// Checks a query answer (`t` of the hit and the point tested) against dense sampling.
+fn check(
+    scene: &Scene,
+    from: Vec2,
+    dir: Vec2,
+    max_s: f32,
+    radius: f32,
+    hit: Option<(f64, Vec2)>,
+) -> Result<(), TestCaseError> {
+    let first = first_crossing(scene, p64(from), p64(dir), max_s as f64, radius as f64);
+    match hit {
+        None => prop_assert!(
+            first.is_none(),
+            "no hit reported, but dense sampling crosses at s = {first:?}"
+        ),
+        Some((t, point)) => {
+            if let Some(f) = first {
+                prop_assert!(
+                    t <= f + TOL,
+                    "hit at t = {t} after the first crossing at s = {f}"
+                );
+            }
+            // The field clearance at the hit is below hit_epsilon...
+            let est = scene.distance(point) as f64 / scene.lipschitz() as f64 - radius as f64;
+            prop_assert!(
+                est < OPTS.hit_epsilon as f64 + 1e-5,
+                "clearance {est} at the hit {point}"
+            );
+            // ...and, unless it starts overlapping, the hit is on the near side of the surface.
+            if t > 0.0 {
+                let truth = scene.exact(p64(point)).0 - radius as f64;
+                prop_assert!(truth >= -TOL, "hit {point} is {truth} past the surface");
+                prop_assert!(est >= -TOL, "field clearance {est} at the hit {point}");
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn raycast_never_tunnels(scene in scene_strategy(), (origin, dir, max_t) in path_strategy()) {
+        let hit = raycast(&scene, origin, dir, max_t, &OPTS).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        if let Some(h) = hit {
+            prop_assert!(h.t >= 0.0 && h.t <= max_t);
+            prop_assert!((h.normal.length() - 1.0).abs() < 1e-5);
+        }
+        check(&scene, origin, dir, max_t, 0.0, hit.map(|h| (h.t as f64, h.point)))?;
+    }
+
+    #[test]
+    fn sweep_never_tunnels(
+        scene in scene_strategy(),
+        (from, dir, length) in path_strategy(),
+        radius in prop_oneof![Just(0.0f32), 0.0f32..2.0],
+    ) {
+        let to = from + dir * length;
+        let hit = sweep_circle(&scene, from, to, radius, &OPTS).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        // The reference path uses the motion as the query sees it.
+        let motion = to - from;
+        let real_len = motion.length();
+        let u = motion / real_len;
+        let mapped = hit.map(|h| {
+            let t = dot(sub(p64(h.center), p64(from)), p64(u));
+            (t, h.center)
+        });
+        if let Some(h) = hit {
+            prop_assert!((0.0..=1.0).contains(&h.toi), "{h:?}");
+            prop_assert!((h.toi as f64 * real_len as f64 - mapped.unwrap().0).abs() < 1e-3 + 1e-6 * real_len as f64, "{h:?}");
+            prop_assert!((h.normal.length() - 1.0).abs() < 1e-5);
+        }
+        check(&scene, from, u, real_len, radius, mapped)?;
+    }
+
+    #[test]
+    fn raycast_against_a_convex_polygon_bound(
+        offsets in prop::collection::vec(0.5f64..10.0, 3..7),
+        jitter in prop::collection::vec(-0.4f64..0.4, 7),
+        (origin, dir, max_t) in path_strategy(),
+    ) {
+        let k = offsets.len();
+        let planes: Vec<(P, f64)> = offsets.iter().enumerate().map(|(i, &c)| {
+            let a = (i as f64 + jitter[i]) / k as f64 * std::f64::consts::TAU;
+            ([a.cos(), a.sin()], c)
+        }).collect();
+        let poly = Polygon { planes };
+        let hit = raycast(&poly, origin, dir, max_t, &OPTS).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        // Dense sampling of the sign (exact for a bound) over the part of the ray near the polygon.
+        let (o, d) = (p64(origin), p64(dir));
+        let mid = -dot(o, d);
+        let reach = 60.0f64;
+        let perp2 = dot(o, o) - mid * mid;
+        let mut first = None;
+        if perp2 < reach * reach {
+            let half = (reach * reach - perp2).sqrt();
+            let (s0, s1) = ((mid - half).max(0.0), (mid + half).min(max_t as f64));
+            let mut s = s0;
+            while s <= s1 {
+                if poly.value([o[0] + d[0] * s, o[1] + d[1] * s]) < 0.0 {
+                    first = Some(s);
+                    break;
+                }
+                s += 0.01;
+            }
+        }
+        match hit {
+            None => prop_assert!(first.is_none(), "missed a crossing at {first:?}"),
+            Some(h) => {
+                if let Some(f) = first {
+                    prop_assert!((h.t as f64) <= f + TOL, "hit {} after crossing {f}", h.t);
+                }
+                let v = poly.distance(h.point);
+                prop_assert!(v < OPTS.hit_epsilon, "{v}");
+                if h.t > 0.0 {
+                    prop_assert!(v as f64 >= -TOL, "{v}");
+                }
+            }
+        }
+    }
+}
+
+/// A convex polygon as the max of half-planes `n . p - c`: exact sign, a distance bound
+/// (underestimates outside near vertices), L = 1.
+struct Polygon {
+    planes: Vec<(P, f64)>,
+}
+
+impl Polygon {
+    fn sample64(&self, p: P) -> (f64, P) {
+        let mut best = (f64::NEG_INFINITY, [0.0, 0.0]);
+        for &(n, c) in &self.planes {
+            let v = dot(n, p) - c;
+            if v > best.0 {
+                best = (v, n);
+            }
+        }
+        best
+    }
+    fn value(&self, p: P) -> f64 {
+        self.sample64(p).0
+    }
+}
+
+impl Sdf for Polygon {
+    fn distance(&self, p: Vec2) -> f32 {
+        self.value(p64(p)) as f32
+    }
+    fn sample(&self, p: Vec2) -> Sample {
+        let (d, g) = self.sample64(p64(p));
+        Sample {
+            distance: d as f32,
+            gradient: Vec2::new(g[0] as f32, g[1] as f32),
+            material: 0,
+        }
+    }
+    fn lipschitz(&self) -> f32 {
+        1.0
+    }
+}
+
+/// A very fast sweep (1e5 units in one motion) still stops at a 0.05-wide wall.
+#[test]
+fn fast_sweep_stops_at_a_thin_wall() {
+    let scene = Scene {
+        shapes: vec![Shape::Box {
+            c: [30.0, 0.0],
+            u: [0.0, 1.0],
+            h: [10.0, 0.025],
+        }],
+        kind: Kind::Exact,
+    };
+    let from = Vec2::new(0.0, 1.0);
+    let h = sweep_circle(
+        &scene,
+        from,
+        Vec2::new(1e5, 1.0),
+        0.25,
+        &RayOptions::default(),
+    )
+    .unwrap()
+    .unwrap();
+    assert!(h.center.x <= 29.725 && h.center.x > 29.72, "{h:?}");
+    let r = raycast(&scene, from, Vec2::X, 1e5, &RayOptions::default())
+        .unwrap()
+        .unwrap();
+    assert!(r.t <= 29.975 && r.t > 29.97, "{r:?}");
+}
+
+/// A grazing ray along a wall with a small budget fails loudly, naming the budget.
+#[test]
+fn grazing_ray_reports_the_step_budget() {
+    let scene = Scene {
+        shapes: vec![Shape::Box {
+            c: [50.0, 0.0],
+            u: [1.0, 0.0],
+            h: [50.0, 1.0],
+        }],
+        kind: Kind::Exact,
+    };
+    let small = RayOptions {
+        max_steps: 64,
+        hit_epsilon: 1e-3,
+    };
+    let e = raycast(&scene, Vec2::new(0.0, 1.002), Vec2::X, 200.0, &small).unwrap_err();
+    assert!(matches!(e, QueryError::StepBudget { steps: 64, .. }), "{e}");
+    assert!(e.to_string().contains("step budget"), "{e}");
+}
+
+/// The same query twice gives the same bits.
+#[test]
+fn queries_are_bit_deterministic() {
+    let scene = Scene {
+        shapes: vec![
+            Shape::Capsule {
+                a: [3.0, -2.0],
+                b: [7.0, 5.0],
+                r: 0.2,
+            },
+            Shape::Box {
+                c: [12.0, 1.0],
+                u: [0.6, 0.8],
+                h: [2.0, 0.1],
+            },
+        ],
+        kind: Kind::Clamped,
+    };
+    let run = || {
+        let r = raycast(
+            &scene,
+            Vec2::new(-1.0, 0.3),
+            Vec2::new(1.0, 0.05),
+            100.0,
+            &RayOptions::default(),
+        )
+        .unwrap()
+        .unwrap();
+        let s = sweep_circle(
+            &scene,
+            Vec2::new(-1.0, 0.3),
+            Vec2::new(40.0, 2.0),
+            0.4,
+            &RayOptions::default(),
+        )
+        .unwrap()
+        .unwrap();
+        [
+            r.t, r.point.x, r.point.y, r.normal.x, r.normal.y, s.toi, s.center.x, s.center.y,
+            s.normal.x, s.normal.y,
+        ]
+        .map(f32::to_bits)
+    };
+    assert_eq!(run(), run());
+}
