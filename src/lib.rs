@@ -8,3 +8,8 @@
 pub mod field2d;
 #[cfg(feature = "raster")]
 pub mod render2d;
+
+/// The README's code examples, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -25,6 +25,7 @@ use super::aabb::Aabb;
 use super::error::LevelError;
 use super::graph::Graph;
 use super::node::{Node, P2};
+use super::terrain::{Terrain, TerrainError, TerrainOptions};
 
 /// Largest accepted level file.
 pub const MAX_LEVEL_BYTES: usize = 16 * 1024 * 1024;
@@ -252,6 +253,22 @@ impl Level {
     /// Material palette.
     pub fn materials(&self) -> &[MaterialDef] {
         &self.file.materials
+    }
+
+    /// Terrain options for this level: its grid cell size and palette size, defaults
+    /// otherwise.
+    pub fn terrain_options(&self) -> TerrainOptions {
+        TerrainOptions {
+            cell_size: self.file.cell_size,
+            material_count: self.file.materials.len() as u16,
+            ..TerrainOptions::default()
+        }
+    }
+
+    /// A terrain over this level's graph and bounds, with [`Level::terrain_options`].
+    pub fn terrain(&self) -> Result<Terrain<Graph>, TerrainError> {
+        let b = self.bounds();
+        Terrain::new(self.graph.clone(), b.min, b.max, self.terrain_options())
     }
 
     /// Spawn points.

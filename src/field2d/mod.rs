@@ -5,19 +5,27 @@ pub mod contour;
 pub mod detmath;
 pub mod error;
 pub mod eval;
+pub mod event;
 pub mod graph;
+pub mod grid;
 pub mod level;
 #[cfg(feature = "mesh")]
 pub mod mesh;
 pub mod node;
 pub mod noise;
 pub mod primitives;
+pub mod quant;
 pub mod query;
 pub mod sdf;
+pub mod terrain;
 
 pub use aabb::Aabb;
 pub use error::LevelError;
+pub use event::{Event, EventError, EventKind};
 pub use graph::{Exactness, Graph, GraphLimits, NodeId, NodeInfo};
+pub use grid::{CellState, GridStats, MaterialSource};
 pub use level::{Level, LevelFile, MaterialDef, WorldBounds};
 pub use node::{Axis, Node};
+pub use quant::{FIXED_ONE, QuantError};
 pub use sdf::{MaterialId, Sample, Sdf};
+pub use terrain::{Terrain, TerrainError, TerrainOptions};

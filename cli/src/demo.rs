@@ -1,0 +1,223 @@
+//! `craterfield demo`: the default level under a scripted barrage, rendered on the CPU
+//! (full-resolution exact field) with a JSON summary of what happened and how fast.
+
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use craterfield::field2d::terrain::Terrain;
+use craterfield::field2d::{Level, Sdf};
+use craterfield::render2d::overlay::draw_markers;
+use craterfield::render2d::{Camera, ExactRenderOptions, render_exact};
+use glam::Vec2;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+
+use crate::barrage::{self, BarrageStats};
+use crate::rng::Rng;
+
+#[derive(Serialize)]
+struct Summary {
+    level: String,
+    events: EventSummary,
+    timings: Timings,
+    field: FieldStats,
+    image: ImageInfo,
+}
+
+#[derive(Serialize)]
+struct EventSummary {
+    requested: usize,
+    applied: usize,
+    #[serde(flatten)]
+    barrage: BarrageStats,
+}
+
+#[derive(Serialize)]
+struct Timings {
+    barrage_ms: f64,
+    insert_us_mean: f64,
+    distance_ns: f64,
+    sample_ns: f64,
+    raycast_us: f64,
+    render_ms: f64,
+}
+
+#[derive(Serialize)]
+struct FieldStats {
+    solid_fraction: f64,
+    lipschitz: f32,
+    grid_cells: usize,
+    max_events_in_a_cell: usize,
+    bricks: usize,
+    air_cells: usize,
+    solid_cells: usize,
+}
+
+#[derive(Serialize)]
+struct ImageInfo {
+    path: String,
+    width: u32,
+    height: u32,
+}
+
+pub fn run(out: &Path, events: usize, width: u32) -> Result<ExitCode, String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let level = Level::default_level();
+    let mut terrain = Terrain::new(
+        level.graph().clone(),
+        level.bounds().min,
+        level.bounds().max,
+        level.terrain_options(),
+    )
+    .map_err(|e| e.to_string())?;
+
+    let bar = ProgressBar::new(events as u64).with_style(
+        ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos}/{len}")
+            .map_err(|e| e.to_string())?
+            .progress_chars("=> "),
+    );
+    bar.set_message("barrage");
+    let t = Instant::now();
+    let mut stats = BarrageStats::default();
+    for chunk in 0..events.div_ceil(50) {
+        let n = (events - chunk * 50).min(50);
+        let s = barrage::fire(&level, &mut terrain, n, 0xc0ffee + chunk as u64);
+        stats.carves += s.carves;
+        stats.fills += s.fills;
+        stats.misses += s.misses;
+        stats.rejected += s.rejected;
+        bar.inc(n as u64);
+    }
+    // Let the last growing blasts reach full size.
+    terrain.set_tick(terrain.tick().saturating_add(60));
+    let barrage_ms = t.elapsed().as_secs_f64() * 1e3;
+    bar.finish_and_clear();
+    let applied = terrain.events().len();
+
+    let timings_q = time_queries(&terrain, &level);
+    bar.set_message("render");
+    let camera = Camera::fit(
+        level.bounds().min,
+        level.bounds().max,
+        width.clamp(64, 16384),
+    );
+    let palette: Vec<[u8; 3]> = level.materials().iter().map(|m| m.color).collect();
+    let t = Instant::now();
+    let mut img = render_exact(&terrain, &palette, &camera, &ExactRenderOptions::default());
+    let render_ms = t.elapsed().as_secs_f64() * 1e3;
+    let spawns: Vec<Vec2> = level.spawns().collect();
+    draw_markers(&mut img, &camera, &spawns, 10.0, [250, 240, 90]);
+    let png = out.join("terrain.png");
+    img.save(&png)
+        .map_err(|e| format!("cannot write {}: {e}", png.display()))?;
+
+    let grid = terrain.stats();
+    let summary = Summary {
+        level: level.name().to_string(),
+        events: EventSummary {
+            requested: events,
+            applied,
+            barrage: stats,
+        },
+        timings: Timings {
+            barrage_ms,
+            insert_us_mean: barrage_ms * 1e3 / applied.max(1) as f64,
+            distance_ns: timings_q.0,
+            sample_ns: timings_q.1,
+            raycast_us: timings_q.2,
+            render_ms,
+        },
+        field: FieldStats {
+            solid_fraction: solid_fraction(&terrain, &level),
+            lipschitz: terrain.lipschitz(),
+            grid_cells: grid.cells,
+            max_events_in_a_cell: grid.max_cell_events,
+            bricks: grid.bricks,
+            air_cells: grid.air_cells,
+            solid_cells: grid.solid_cells,
+        },
+        image: ImageInfo {
+            path: png.display().to_string(),
+            width: camera.width,
+            height: camera.height,
+        },
+    };
+    let json = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    let json_path = out.join("summary.json");
+    std::fs::write(&json_path, json + "\n")
+        .map_err(|e| format!("cannot write {}: {e}", json_path.display()))?;
+
+    println!("craterfield demo: level \"{}\"", summary.level);
+    println!(
+        "  {} events applied ({} craters, {} fills; {} shells missed, {} rejected) in {:.0} ms",
+        applied, stats.carves, stats.fills, stats.misses, stats.rejected, barrage_ms
+    );
+    println!(
+        "  queries: distance {:.0} ns, distance+gradient {:.0} ns, raycast {:.1} us",
+        summary.timings.distance_ns, summary.timings.sample_ns, summary.timings.raycast_us
+    );
+    println!(
+        "  grid: {} cells, at most {} events in a cell, {} baked bricks; solid fraction {:.3}",
+        grid.cells, grid.max_cell_events, grid.bricks, summary.field.solid_fraction
+    );
+    println!(
+        "  wrote {} ({}x{}, rendered in {:.0} ms) and {}",
+        png.display(),
+        camera.width,
+        camera.height,
+        render_ms,
+        json_path.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Mean nanoseconds per distance and per distance+gradient query, and microseconds per
+/// raycast, over random points of the world.
+fn time_queries(terrain: &Terrain<craterfield::field2d::Graph>, level: &Level) -> (f64, f64, f64) {
+    let b = level.bounds();
+    let mut rng = Rng::new(7);
+    let points: Vec<Vec2> = (0..100_000)
+        .map(|_| Vec2::new(rng.range(b.min.x, b.max.x), rng.range(b.min.y, b.max.y)))
+        .collect();
+    let t = Instant::now();
+    let acc: f32 = points.iter().map(|&p| terrain.distance(p)).sum();
+    let distance_ns = t.elapsed().as_secs_f64() * 1e9 / points.len() as f64;
+    let t = Instant::now();
+    let acc2: f32 = points.iter().map(|&p| terrain.sample(p).gradient.x).sum();
+    let sample_ns = t.elapsed().as_secs_f64() * 1e9 / points.len() as f64;
+    std::hint::black_box((acc, acc2));
+    let rays = 2_000;
+    let t = Instant::now();
+    let mut hits = 0;
+    for &origin in &points[..rays] {
+        let dir = Vec2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+        let opts = craterfield::field2d::query::RayOptions::default();
+        if let Ok(Some(_)) =
+            craterfield::field2d::query::raycast(terrain, origin, dir, 2000.0, &opts)
+        {
+            hits += 1;
+        }
+    }
+    std::hint::black_box(hits);
+    let raycast_us = t.elapsed().as_secs_f64() * 1e6 / rays as f64;
+    (distance_ns, sample_ns, raycast_us)
+}
+
+/// Fraction of the world rectangle that is solid, on a 256 x 128 sample lattice.
+fn solid_fraction(terrain: &Terrain<craterfield::field2d::Graph>, level: &Level) -> f64 {
+    let b = level.bounds();
+    let (nx, ny) = (256, 128);
+    let mut solid = 0usize;
+    for j in 0..ny {
+        for i in 0..nx {
+            let p = b.min
+                + (b.max - b.min)
+                    * Vec2::new((i as f32 + 0.5) / nx as f32, (j as f32 + 0.5) / ny as f32);
+            if terrain.distance(p) < 0.0 {
+                solid += 1;
+            }
+        }
+    }
+    solid as f64 / (nx * ny) as f64
+}

@@ -1,0 +1,677 @@
+//! The explosion grid agrees with the brute-force field: bit for bit without bricks, within
+//! the documented bound with bricks; bad events change nothing; costs stay bounded.
+
+use craterfield::field2d::detmath::{Dual, Num, V2};
+use craterfield::field2d::{
+    CellState, Event, MaterialSource, Sample, Sdf, Terrain, TerrainOptions,
+};
+use glam::Vec2;
+use proptest::prelude::*;
+
+/// Ground half-plane `y < ground` (material 1) united with circles (their own materials).
+#[derive(Clone, Debug)]
+struct TestBase {
+    ground: f32,
+    circles: Vec<(Vec2, f32, u16)>,
+}
+
+impl TestBase {
+    fn eval<N: Num>(&self, x: N, y: N) -> (N, u16) {
+        let mut d = y.offset(-self.ground);
+        let mut m = 1;
+        for &(c, r, mat) in &self.circles {
+            let dc = V2::new(x, y).minus(c).length().offset(-r);
+            if dc.value() < d.value() {
+                d = dc;
+                m = mat;
+            }
+        }
+        (d, m)
+    }
+}
+
+impl Sdf for TestBase {
+    fn distance(&self, p: Vec2) -> f32 {
+        self.eval(p.x, p.y).0
+    }
+    fn sample(&self, p: Vec2) -> Sample {
+        let (x, y) = Dual::point(p);
+        let (d, material) = self.eval(x, y);
+        Sample {
+            distance: d.v,
+            gradient: d.gradient(),
+            material,
+        }
+    }
+    fn lipschitz(&self) -> f32 {
+        1.0
+    }
+}
+
+const BOUND: f32 = 200.0;
+
+fn opts(cap: usize, res: u32) -> TerrainOptions {
+    TerrainOptions {
+        cell_size: 32.0,
+        band: 16.0,
+        cell_cap: cap,
+        brick_resolution: res,
+        max_event_radius: 128.0,
+        max_rim: 16.0,
+        max_events: 10_000,
+        material_count: 8,
+    }
+}
+
+fn terrain(base: TestBase, o: TerrainOptions) -> Terrain<TestBase> {
+    Terrain::new(base, Vec2::splat(-BOUND), Vec2::splat(BOUND), o).unwrap()
+}
+
+#[derive(Clone, Debug)]
+struct Spec {
+    fill: bool,
+    /// Either a free centre, or a cell corner (i, j) plus a tiny offset.
+    center: (Vec2, Option<(i32, i32)>),
+    radius: f32,
+    rim: f32,
+    grow: u16,
+    tick: u32,
+    material: u16,
+    set_tick_before: Option<u32>,
+}
+
+fn spec() -> impl Strategy<Value = Spec> {
+    let center = prop_oneof![
+        (-BOUND..BOUND, -BOUND..BOUND).prop_map(|(x, y)| (Vec2::new(x, y), None)),
+        (-4i32..5, -4i32..5, -3i32..4, -3i32..4, 0u8..3).prop_map(|(i, j, ox, oy, edge)| {
+            let off = Vec2::new(ox as f32, oy as f32) / 256.0;
+            let off = match edge {
+                0 => off,
+                1 => Vec2::new(off.x, off.y + 13.0),
+                _ => Vec2::new(off.x + 7.5, off.y),
+            };
+            (off, Some((i, j)))
+        }),
+    ];
+    let radius = prop_oneof![1.0f32..40.0, 40.0f32..128.0, Just(128.0f32)];
+    let rim = prop_oneof![3 => Just(0.0f32), 2 => 0.25f32..16.0];
+    let grow = prop_oneof![3 => Just(0u16), 1 => 1u16..6];
+    let tick = prop_oneof![2 => Just(0u32), 1 => 0u32..8];
+    let set_tick = prop_oneof![4 => Just(None), 1 => (0u32..12).prop_map(Some)];
+    (
+        any::<bool>(),
+        center,
+        radius,
+        rim,
+        grow,
+        tick,
+        0u16..8,
+        set_tick,
+    )
+        .prop_map(
+            |(fill, center, radius, rim, grow, tick, material, set_tick_before)| Spec {
+                fill,
+                center,
+                radius,
+                rim,
+                grow,
+                tick,
+                material,
+                set_tick_before,
+            },
+        )
+}
+
+fn base() -> impl Strategy<Value = TestBase> {
+    let circle = (-150.0f32..150.0, -150.0f32..150.0, 5.0f32..60.0, 2u16..6)
+        .prop_map(|(x, y, r, m)| (Vec2::new(x, y), r, m));
+    (-50.0f32..50.0, prop::collection::vec(circle, 0..4))
+        .prop_map(|(ground, circles)| TestBase { ground, circles })
+}
+
+fn to_event(t: &Terrain<TestBase>, s: &Spec) -> Event {
+    let c = match s.center.1 {
+        None => s.center.0,
+        Some((i, j)) => {
+            // A cell corner near the middle of the grid, plus the offset.
+            let g = t.grid();
+            let o = g.origin();
+            let cs = g.cell_size();
+            let (nx, ny) = g.dims();
+            let ci = (nx / 2) as i32 + i;
+            let cj = (ny / 2) as i32 + j;
+            Vec2::new(o.x + ci as f32 * cs, o.y + cj as f32 * cs) + s.center.0
+        }
+    };
+    let c = c.clamp(Vec2::splat(-BOUND), Vec2::splat(BOUND));
+    let e = if s.fill {
+        Event::fill(c, s.radius, s.material).unwrap()
+    } else {
+        Event::carve(c, s.radius).unwrap()
+    };
+    e.with_rim(s.rim)
+        .unwrap()
+        .with_growth(s.grow)
+        .at_tick(s.tick)
+}
+
+fn build(base: &TestBase, specs: &[Spec], final_tick: u32, o: TerrainOptions) -> Terrain<TestBase> {
+    let mut t = terrain(base.clone(), o);
+    for s in specs {
+        if let Some(tk) = s.set_tick_before {
+            t.set_tick(tk);
+        }
+        let e = to_event(&t, s);
+        t.apply(e).unwrap();
+    }
+    t.set_tick(final_tick);
+    t
+}
+
+/// Query points: random ones plus points near event centres, disc edges and cell corners.
+fn query_points(t: &Terrain<TestBase>, random: &[(f32, f32)]) -> Vec<Vec2> {
+    let mut pts: Vec<Vec2> = random.iter().map(|&(x, y)| Vec2::new(x, y)).collect();
+    let g = t.grid();
+    for e in t.events() {
+        let c = e.center_f32();
+        let r = e.radius_f32();
+        pts.push(c + Vec2::new(0.3, -0.2));
+        pts.push(c + Vec2::new(r, 0.01));
+        pts.push(c + Vec2::new(-0.7 * r, 0.7 * r));
+        // Just inside the disc edge in 8 directions (where a wrongly dropped event shows).
+        for k in 0..8 {
+            let (sn, cs) = craterfield::field2d::detmath::sin_cos_deg(k as f32 * 45.0 + 10.0);
+            pts.push(c + Vec2::new(cs, sn) * (r - 0.5));
+        }
+        let corner = ((c - g.origin()) / g.cell_size()).round() * g.cell_size() + g.origin();
+        pts.push(corner);
+        pts.push(corner - Vec2::splat(1.0 / 1024.0));
+    }
+    pts
+}
+
+fn assert_same(a: Sample, b: Sample, p: Vec2) {
+    assert_eq!(
+        a.distance.to_bits(),
+        b.distance.to_bits(),
+        "distance at {p}: {a:?} vs {b:?}"
+    );
+    assert_eq!(
+        a.gradient.x.to_bits(),
+        b.gradient.x.to_bits(),
+        "gradient.x at {p}: {a:?} vs {b:?}"
+    );
+    assert_eq!(
+        a.gradient.y.to_bits(),
+        b.gradient.y.to_bits(),
+        "gradient.y at {p}: {a:?} vs {b:?}"
+    );
+    assert_eq!(a.material, b.material, "material at {p}: {a:?} vs {b:?}");
+}
+
+fn uses_brick(t: &Terrain<TestBase>, p: Vec2) -> bool {
+    matches!(
+        t.cell_state(p),
+        Some(CellState::Brick(_)) | Some(CellState::Air(MaterialSource::Brick(_)))
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    #[test]
+    fn grid_without_bricks_is_bit_identical_to_brute_force(
+        b in base(),
+        specs in prop::collection::vec(spec(), 0..40),
+        final_tick in 0u32..12,
+        random in prop::collection::vec((-420.0f32..420.0, -420.0f32..420.0), 48),
+    ) {
+        let t = build(&b, &specs, final_tick, opts(1_000_000, 8));
+        prop_assert_eq!(t.stats().bricks, 0);
+        for p in query_points(&t, &random) {
+            let s = t.sample(p);
+            prop_assert_eq!(s.distance.to_bits(), t.distance(p).to_bits());
+            prop_assert_eq!(t.distance(p).to_bits(), t.distance_brute_force(p).to_bits(), "at {}", p);
+            assert_same(s, t.sample_brute_force(p), p);
+        }
+    }
+
+    #[test]
+    fn grid_with_bricks_is_within_the_documented_bound(
+        b in base(),
+        specs in prop::collection::vec(spec(), 0..40),
+        final_tick in 0u32..12,
+        random in prop::collection::vec((-420.0f32..420.0, -420.0f32..420.0), 48),
+    ) {
+        let t = build(&b, &specs, final_tick, opts(2, 8));
+        let bound = t.brick_error_bound() + 1e-4;
+        prop_assert!((bound - (4.0 / 2f32.sqrt() + 1e-4)).abs() < 1e-5);
+        for p in query_points(&t, &random) {
+            let d = t.distance(p);
+            prop_assert_eq!(t.sample(p).distance.to_bits(), d.to_bits());
+            let exact = t.distance_brute_force(p);
+            if uses_brick(&t, p) {
+                prop_assert!((d - exact).abs() <= bound, "at {}: grid {} brute {} bound {}", p, d, exact, bound);
+            } else {
+                assert_same(t.sample(p), t.sample_brute_force(p), p);
+            }
+        }
+    }
+}
+
+/// A simple splitmix-style generator so the non-proptest tests are reproducible.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+fn hills() -> TestBase {
+    TestBase {
+        ground: 0.0,
+        circles: vec![
+            (Vec2::new(-40.0, 10.0), 50.0, 2),
+            (Vec2::new(80.0, -20.0), 35.0, 3),
+        ],
+    }
+}
+
+#[test]
+fn ten_thousand_explosions_keep_query_cost_bounded() {
+    let o = TerrainOptions {
+        brick_resolution: 8,
+        ..TerrainOptions::default()
+    };
+    let mut t = Terrain::new(hills(), Vec2::splat(-1000.0), Vec2::splat(1000.0), o).unwrap();
+    let mut rng = Rng(7);
+    for _ in 0..10_000 {
+        let c = Vec2::new(rng.range(-150.0, 150.0), rng.range(-150.0, 150.0));
+        let e = Event::carve(c, rng.range(8.0, 200.0)).unwrap();
+        t.apply(e).unwrap();
+    }
+    let s = t.stats();
+    assert!(s.max_cell_events <= o.cell_cap, "{s:?}");
+    assert_eq!(s.over_cap_cells, 0);
+    assert!(s.bricks > 0 || s.resets > 0, "{s:?}");
+    assert!(s.resets > 0 && s.bakes > 0, "{s:?}");
+    let bound = t.brick_error_bound() + 1e-4;
+    for _ in 0..200 {
+        let p = Vec2::new(rng.range(-400.0, 400.0), rng.range(-400.0, 400.0));
+        assert!(t.cell_event_count(p) <= o.cell_cap);
+        let d = t.distance(p);
+        let exact = t.distance_brute_force(p);
+        assert!((d - exact).abs() <= bound, "at {p}: {d} vs {exact}");
+        if !uses_brick(&t, p) {
+            assert_eq!(d.to_bits(), exact.to_bits(), "at {p}");
+        }
+    }
+}
+
+#[test]
+fn bad_events_are_rejected_and_change_nothing() {
+    let o = TerrainOptions {
+        max_events: 3,
+        material_count: 4,
+        ..TerrainOptions::default()
+    };
+    let mut t = Terrain::new(hills(), Vec2::splat(-500.0), Vec2::splat(500.0), o).unwrap();
+    t.apply(Event::carve(Vec2::new(0.0, 0.0), 30.0).unwrap())
+        .unwrap();
+    t.apply(
+        Event::fill(Vec2::new(50.0, 10.0), 20.0, 3)
+            .unwrap()
+            .with_rim(4.0)
+            .unwrap(),
+    )
+    .unwrap();
+    let probes: Vec<Vec2> = (0..40)
+        .map(|i| Vec2::new(i as f32 * 7.3 - 140.0, (i % 7) as f32 * 9.1 - 30.0))
+        .collect();
+    let before: Vec<(u32, Sample)> = probes
+        .iter()
+        .map(|&p| (t.distance(p).to_bits(), t.sample(p)))
+        .collect();
+    let stats_before = t.stats();
+
+    let msg = Event::carve(Vec2::new(f32::NAN, 0.0), 5.0)
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("NaN") && msg.contains("center.x"), "{msg}");
+    let msg = Event::carve(Vec2::ZERO, f32::NAN).unwrap_err().to_string();
+    assert!(msg.contains("NaN") && msg.contains("radius"), "{msg}");
+    let msg = Event::carve(Vec2::ZERO, -5.0).unwrap_err().to_string();
+    assert!(msg.contains("radius") && msg.contains("-5"), "{msg}");
+    let msg = Event::carve(Vec2::ZERO, 0.0).unwrap_err().to_string();
+    assert!(msg.contains("radius"), "{msg}");
+
+    let base_event = Event::carve(Vec2::ZERO, 5.0).unwrap();
+    let cases: Vec<(Event, &[&str])> = vec![
+        (
+            Event {
+                radius: -256,
+                ..base_event
+            },
+            &["radius", "-1"],
+        ),
+        (
+            Event {
+                radius: 0,
+                ..base_event
+            },
+            &["radius", "0"],
+        ),
+        (
+            Event::carve(Vec2::ZERO, 600.0).unwrap(),
+            &["radius", "600", "512"],
+        ),
+        (base_event.with_rim(100.0).unwrap(), &["rim", "100", "64"]),
+        (
+            Event::carve(Vec2::new(501.0, 0.0), 5.0).unwrap(),
+            &["center", "501"],
+        ),
+        (Event::fill(Vec2::ZERO, 5.0, 4).unwrap(), &["material", "4"]),
+        (
+            Event {
+                center: [i32::MAX, 0],
+                ..base_event
+            },
+            &["center.x", "2147483647"],
+        ),
+    ];
+    for (e, words) in cases {
+        let msg = t.apply(e).unwrap_err().to_string();
+        for w in words {
+            assert!(msg.contains(w), "{msg:?} should mention {w:?}");
+        }
+    }
+    // Fill the terrain to max_events, then one more is refused.
+    t.apply(Event::carve(Vec2::new(-60.0, 0.0), 10.0).unwrap())
+        .unwrap();
+    let full: Vec<(u32, Sample)> = probes
+        .iter()
+        .map(|&p| (t.distance(p).to_bits(), t.sample(p)))
+        .collect();
+    let msg = t.apply(base_event).unwrap_err().to_string();
+    assert!(msg.contains("max_events") && msg.contains('3'), "{msg}");
+    assert_eq!(t.events().len(), 3);
+    let after: Vec<(u32, Sample)> = probes
+        .iter()
+        .map(|&p| (t.distance(p).to_bits(), t.sample(p)))
+        .collect();
+    assert_eq!(full, after);
+
+    // The rejected events before the last valid one changed nothing either.
+    let mut u = Terrain::new(hills(), Vec2::splat(-500.0), Vec2::splat(500.0), o).unwrap();
+    u.apply(Event::carve(Vec2::new(0.0, 0.0), 30.0).unwrap())
+        .unwrap();
+    u.apply(
+        Event::fill(Vec2::new(50.0, 10.0), 20.0, 3)
+            .unwrap()
+            .with_rim(4.0)
+            .unwrap(),
+    )
+    .unwrap();
+    assert_eq!(u.stats(), stats_before);
+    let again: Vec<(u32, Sample)> = probes
+        .iter()
+        .map(|&p| (u.distance(p).to_bits(), u.sample(p)))
+        .collect();
+    assert_eq!(before, again);
+}
+
+#[test]
+fn bad_terrain_options_are_rejected() {
+    let b = hills();
+    let e = Terrain::new(
+        b.clone(),
+        Vec2::new(f32::NAN, 0.0),
+        Vec2::ONE,
+        TerrainOptions::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("NaN"), "{e}");
+    let e = Terrain::new(b.clone(), Vec2::ONE, Vec2::ZERO, TerrainOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("empty"), "{e}");
+    let e = Terrain::new(
+        b.clone(),
+        Vec2::ZERO,
+        Vec2::splat(1e6),
+        TerrainOptions::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("1000000"), "{e}");
+    let o = TerrainOptions {
+        cell_size: 1.0,
+        ..TerrainOptions::default()
+    };
+    let e = Terrain::new(b.clone(), Vec2::splat(-60000.0), Vec2::splat(60000.0), o).unwrap_err();
+    assert!(e.to_string().contains("cells"), "{e}");
+    let o = TerrainOptions {
+        band: -1.0,
+        ..TerrainOptions::default()
+    };
+    let e = Terrain::new(b.clone(), Vec2::ZERO, Vec2::ONE, o).unwrap_err();
+    assert!(
+        e.to_string().contains("band") && e.to_string().contains("-1"),
+        "{e}"
+    );
+    let o = TerrainOptions {
+        cell_cap: 0,
+        ..TerrainOptions::default()
+    };
+    assert!(
+        Terrain::new(b, Vec2::ZERO, Vec2::ONE, o)
+            .unwrap_err()
+            .to_string()
+            .contains("cell_cap")
+    );
+}
+
+#[test]
+fn gradients_match_finite_differences_away_from_kinks() {
+    let mut t = terrain(hills(), opts(1_000_000, 8));
+    let mut rng = Rng(3);
+    for i in 0..30 {
+        let c = Vec2::new(rng.range(-150.0, 150.0), rng.range(-60.0, 60.0));
+        let e = if i % 3 == 0 {
+            Event::fill(c, rng.range(5.0, 30.0), 5).unwrap()
+        } else {
+            Event::carve(c, rng.range(5.0, 50.0)).unwrap()
+        };
+        let e = if i % 2 == 0 {
+            e.with_rim(rng.range(1.0, 12.0)).unwrap()
+        } else {
+            e
+        };
+        t.apply(e).unwrap();
+    }
+    let h = 1.0 / 64.0;
+    let mut checked = 0;
+    for _ in 0..2000 {
+        let p = Vec2::new(rng.range(-200.0, 200.0), rng.range(-80.0, 80.0));
+        let s = t.sample(p);
+        let len = s.gradient.length();
+        if !(0.5..=1.01).contains(&len) || s.distance.abs() > 15.0 {
+            continue;
+        }
+        // Smooth here: the analytic gradient barely changes over the stencil.
+        let smooth = [Vec2::X, Vec2::NEG_X, Vec2::Y, Vec2::NEG_Y]
+            .iter()
+            .all(|&dir| (t.sample(p + dir * h).gradient - s.gradient).length() < 0.01);
+        if !smooth {
+            continue;
+        }
+        let fx = (t.distance(p + Vec2::X * h) - t.distance(p - Vec2::X * h)) / (2.0 * h);
+        let fy = (t.distance(p + Vec2::Y * h) - t.distance(p - Vec2::Y * h)) / (2.0 * h);
+        assert!(
+            (fx - s.gradient.x).abs() < 0.02,
+            "at {p}: fd {fx} vs {}",
+            s.gradient.x
+        );
+        assert!(
+            (fy - s.gradient.y).abs() < 0.02,
+            "at {p}: fd {fy} vs {}",
+            s.gradient.y
+        );
+        checked += 1;
+    }
+    assert!(checked > 200, "only {checked} smooth points checked");
+}
+
+#[test]
+fn same_events_give_same_bits_and_pruning_matches_brute_force() {
+    let mut rng = Rng(11);
+    let mut events = Vec::new();
+    for i in 0..300 {
+        let c = Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0));
+        let r = rng.range(4.0, 128.0);
+        let e = if i % 4 == 0 {
+            Event::fill(c, r * 0.5, (i % 7) as u16).unwrap()
+        } else {
+            Event::carve(c, r).unwrap()
+        };
+        events.push(e);
+    }
+    let run = || {
+        let mut t = terrain(hills(), opts(1_000_000, 8));
+        for &e in &events {
+            t.apply(e).unwrap();
+        }
+        t
+    };
+    let (a, b) = (run(), run());
+    assert_eq!(a.stats(), b.stats());
+    let s = a.stats();
+    assert!(
+        s.resets > 0 && s.pruned > 0,
+        "pruning should have happened: {s:?}"
+    );
+    for _ in 0..500 {
+        let p = Vec2::new(rng.range(-300.0, 300.0), rng.range(-300.0, 300.0));
+        assert_eq!(a.distance(p).to_bits(), b.distance(p).to_bits());
+        assert_same(a.sample(p), b.sample(p), p);
+        assert_same(a.sample(p), a.sample_brute_force(p), p);
+    }
+}
+
+#[test]
+fn growth_and_tick_rewind_match_brute_force() {
+    let mut t = terrain(hills(), opts(2, 8));
+    let mut rng = Rng(5);
+    for i in 0..60u32 {
+        let c = Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0));
+        let e = Event::carve(c, rng.range(10.0, 100.0))
+            .unwrap()
+            .with_growth((i % 4) as u16)
+            .at_tick(i / 6);
+        t.apply(e).unwrap();
+    }
+    for tick in [0u32, 3, 12, 5, 20, 1] {
+        t.set_tick(tick);
+        assert_eq!(t.tick(), tick);
+        let s = t.stats();
+        if tick >= 12 {
+            // Every event is settled: every list is within the cap.
+            assert_eq!(s.over_cap_cells, 0, "tick {tick}: {s:?}");
+            assert!(s.max_cell_events <= 2, "tick {tick}: {s:?}");
+        }
+        let bound = t.brick_error_bound() + 1e-4;
+        for _ in 0..100 {
+            let p = Vec2::new(rng.range(-200.0, 200.0), rng.range(-200.0, 200.0));
+            let (d, exact) = (t.distance(p), t.distance_brute_force(p));
+            if uses_brick(&t, p) {
+                assert!(
+                    (d - exact).abs() <= bound,
+                    "tick {tick} at {p}: {d} vs {exact}"
+                );
+            } else {
+                assert_eq!(d.to_bits(), exact.to_bits(), "tick {tick} at {p}");
+            }
+        }
+    }
+}
+
+#[test]
+fn nan_and_far_queries_do_not_panic() {
+    let mut t = terrain(hills(), opts(2, 8));
+    t.apply(Event::carve(Vec2::ZERO, 50.0).unwrap()).unwrap();
+    assert!(t.distance(Vec2::new(f32::NAN, 0.0)).is_nan());
+    assert!(t.sample(Vec2::new(0.0, f32::NAN)).distance.is_nan());
+    for p in [
+        Vec2::splat(f32::INFINITY),
+        Vec2::new(f32::NEG_INFINITY, 3.0),
+        Vec2::splat(1e30),
+        Vec2::splat(-1e30),
+    ] {
+        assert_eq!(t.distance(p).to_bits(), t.distance_brute_force(p).to_bits());
+        let _ = t.sample(p);
+        assert_eq!(t.cell_event_count(p), 0);
+    }
+    assert_eq!(t.lipschitz(), 1.0);
+}
+
+/// Nested sharp discs (mostly one kind and material, so runs of covered events form), queried
+/// densely along every disc edge: a wrongly dropped event shows up there.
+fn nested_specs() -> impl Strategy<Value = Vec<(bool, Vec2, f32, u16)>> {
+    prop::collection::vec(
+        (
+            prop::bool::weighted(0.2),
+            -20.0f32..20.0,
+            -20.0f32..20.0,
+            10.0f32..70.0,
+            prop::bool::weighted(0.2),
+        ),
+        1..30,
+    )
+    .prop_map(|v| {
+        v.into_iter()
+            .map(|(flip, x, y, r, other_mat)| {
+                (flip, Vec2::new(x, y), r, if other_mat { 2 } else { 1 })
+            })
+            .collect()
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    #[test]
+    fn covered_event_pruning_is_exact(fills in any::<bool>(), specs in nested_specs()) {
+        let mut t = terrain(hills(), opts(1_000_000, 8));
+        for &(flip, c, r, m) in &specs {
+            let e = if fills != flip { Event::fill(c, r, m).unwrap() } else { Event::carve(c, r).unwrap() };
+            t.apply(e).unwrap();
+        }
+        for e in t.events().to_vec() {
+            for k in 0..32 {
+                let (sn, cs) = craterfield::field2d::detmath::sin_cos_deg(k as f32 * 11.25 + 3.0);
+                for dr in [-1.5f32, -0.5, -0.1, 0.1, 0.7] {
+                    let p = e.center_f32() + Vec2::new(cs, sn) * (e.radius_f32() + dr);
+                    assert_same(t.sample(p), t.sample_brute_force(p), p);
+                    prop_assert_eq!(t.distance(p).to_bits(), t.distance_brute_force(p).to_bits());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn covered_events_are_pruned() {
+    let mut t = terrain(hills(), opts(1_000_000, 8));
+    for i in 0..20 {
+        t.apply(Event::carve(Vec2::new(i as f32 * 0.5, 0.0), 20.0 + i as f32).unwrap())
+            .unwrap();
+    }
+    let s = t.stats();
+    assert!(s.pruned > 0, "{s:?}");
+    // Each newer disc covers the previous one: every cell lists at most one of them.
+    assert!(s.max_cell_events <= 1, "{s:?}");
+}
