@@ -1,5 +1,6 @@
 //! Contours and meshes of random and real fields: closed, non-crossing contours whose
 //! enclosed area the mesh reproduces, deterministic, and no panics on odd options.
+#![cfg(feature = "mesh")]
 
 use std::collections::BTreeMap;
 
