@@ -64,13 +64,7 @@ struct ImageInfo {
 pub fn run(out: &Path, events: usize, width: u32) -> Result<ExitCode, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let level = Level::default_level();
-    let mut terrain = Terrain::new(
-        level.graph().clone(),
-        level.bounds().min,
-        level.bounds().max,
-        level.terrain_options(),
-    )
-    .map_err(|e| e.to_string())?;
+    let mut terrain = level.terrain().map_err(|e| e.to_string())?;
 
     let bar = ProgressBar::new(events as u64).with_style(
         ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos}/{len}")
