@@ -61,9 +61,17 @@ struct ImageInfo {
     height: u32,
 }
 
-pub fn run(out: &Path, events: usize, width: u32) -> Result<ExitCode, String> {
+pub fn run(
+    out: &Path,
+    events: usize,
+    width: u32,
+    level: Option<&Path>,
+) -> Result<ExitCode, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
-    let level = Level::default_level();
+    let level = match level {
+        Some(path) => Level::load(path).map_err(|e| e.to_string())?,
+        None => Level::default_level(),
+    };
     let mut terrain = level.terrain().map_err(|e| e.to_string())?;
 
     let bar = ProgressBar::new(events as u64).with_style(

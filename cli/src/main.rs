@@ -34,6 +34,9 @@ enum Command {
         /// Rendered image width in pixels (the world is fitted to it).
         #[arg(long, default_value_t = 3840)]
         width: u32,
+        /// A level file to use instead of the embedded default level.
+        #[arg(long)]
+        level: Option<PathBuf>,
     },
     /// Level files.
     Level {
@@ -75,8 +78,14 @@ fn main() -> ExitCode {
         out: PathBuf::from("out/demo"),
         events: 600,
         width: 3840,
+        level: None,
     }) {
-        Command::Demo { out, events, width } => demo::run(&out, events, width),
+        Command::Demo {
+            out,
+            events,
+            width,
+            level,
+        } => demo::run(&out, events, width, level.as_deref()),
         Command::Level {
             command: LevelCommand::Check { file },
         } => level_check(&file),
