@@ -228,3 +228,11 @@ proptest! {
         let _ = Level::from_ron(&text);
     }
 }
+
+#[test]
+fn levels_whose_explosion_grid_would_be_too_big_are_refused() {
+    let huge = level_with("Circle(radius: 1.0)", "cell_size: 8.0,")
+        .replace("max: (1024.0, 512.0)", "max: (60000.0, 30000.0)");
+    let msg = error_of(&huge);
+    assert!(msg.starts_with("cell_size:"), "{msg}");
+}

@@ -675,3 +675,35 @@ fn covered_events_are_pruned() {
     // Each newer disc covers the previous one: every cell lists at most one of them.
     assert!(s.max_cell_events <= 1, "{s:?}");
 }
+
+#[test]
+fn brick_memory_is_bounded_up_front() {
+    use craterfield::field2d::{Graph, Node, Terrain, TerrainOptions};
+    let base = Graph::compile(
+        &Node::Circle {
+            center: [0.0, 0.0],
+            radius: 10.0,
+        },
+        &Default::default(),
+    )
+    .unwrap();
+    let opts = TerrainOptions {
+        cell_size: 16.0,
+        brick_resolution: 64,
+        ..TerrainOptions::default()
+    };
+    let result = Terrain::new(
+        base,
+        glam::Vec2::splat(-8000.0),
+        glam::Vec2::splat(8000.0),
+        opts,
+    );
+    let Err(err) = result else {
+        panic!("a grid whose bricks could take tens of GiB must be refused");
+    };
+    let msg = err.to_string();
+    assert!(
+        msg.contains("brick_resolution") && msg.contains("1 GiB"),
+        "{msg}"
+    );
+}

@@ -224,7 +224,12 @@ impl Level {
             check_materials(node, &format!("nodes[\"{name}\"]"), file.materials.len())?;
         }
         let graph = Graph::compile(&file.root, &file.nodes)?;
-        Ok(Level { file, graph })
+        let level = Level { file, graph };
+        // The explosion grid this level asks for must be buildable (cell count, memory).
+        level
+            .terrain()
+            .map_err(|e| invalid("cell_size", e.to_string()))?;
+        Ok(level)
     }
 
     /// The level as written.

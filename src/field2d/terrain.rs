@@ -83,6 +83,11 @@ use super::sdf::{MaterialId, Sample, Sdf};
 /// Largest accepted world coordinate magnitude (bounds, and so event centres).
 pub const MAX_COORD: f32 = 65536.0;
 
+/// Most memory the bricks of one terrain may ever take (every cell baked): the grid size
+/// and brick resolution are checked against it up front, so memory stays bounded whatever
+/// the events.
+pub const MAX_BRICK_BYTES: u64 = 1 << 30;
+
 /// Tuning and limits of a [`Terrain`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TerrainOptions {
@@ -398,6 +403,20 @@ impl<F: Sdf> Terrain<F> {
             options.cell_size,
             options.brick_resolution,
         )?;
+        let (nx, ny) = grid.dims();
+        let side = grid.brick_resolution() as u64 + 1;
+        // f32 value + u16 material per lattice point.
+        let worst = nx as u64 * ny as u64 * side * side * 6;
+        if worst > MAX_BRICK_BYTES {
+            return Err(TerrainError::BadOption {
+                name: "brick_resolution",
+                value: format!(
+                    "{} ({nx}x{ny} cells could take {worst} bytes of bricks)",
+                    options.brick_resolution
+                ),
+                reason: "cells x (resolution + 1)^2 x 6 bytes must stay within 1 GiB: lower the resolution or raise cell_size",
+            });
+        }
         Ok(Terrain {
             base,
             options,
