@@ -182,13 +182,14 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// A grid of `Base` cells covering `[min, max]` (rounded outwards to whole cells).
-    pub(crate) fn new(
+    /// Columns and rows of a grid covering `[min, max]` (rounded outwards to whole cells),
+    /// checked against the limits without allocating anything.
+    pub(crate) fn plan(
         min: Vec2,
         max: Vec2,
         cell_size: f32,
         resolution: u32,
-    ) -> Result<Grid, GridError> {
+    ) -> Result<(u32, u32), GridError> {
         if !(cell_size.is_finite() && cell_size > 0.0) {
             return Err(GridError::BadCellSize { value: cell_size });
         }
@@ -202,15 +203,24 @@ impl Grid {
         if cells.is_nan() || cells > MAX_CELLS as f64 {
             return Err(GridError::TooManyCells { cells, nx, ny });
         }
-        let (nx, ny) = (nx as u32, ny as u32);
-        let count = nx as usize * ny as usize;
+        Ok((nx as u32, ny as u32))
+    }
+
+    /// A grid of `Base` cells covering `[min, max]` (rounded outwards to whole cells).
+    pub(crate) fn new(
+        min: Vec2,
+        max: Vec2,
+        cell_size: f32,
+        resolution: u32,
+    ) -> Result<Grid, GridError> {
+        let (nx, ny) = Grid::plan(min, max, cell_size, resolution)?;
         Ok(Grid {
             origin: min,
             cell_size,
             nx,
             ny,
             resolution,
-            cells: vec![Cell::default(); count],
+            cells: vec![Cell::default(); nx as usize * ny as usize],
             bricks: Vec::new(),
             free_bricks: Vec::new(),
             stats: GridStats::default(),

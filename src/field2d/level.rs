@@ -31,8 +31,6 @@ use super::terrain::{Terrain, TerrainError, TerrainOptions};
 pub const MAX_LEVEL_BYTES: usize = 16 * 1024 * 1024;
 /// Largest accepted world coordinate magnitude (keeps quantized event coordinates exact).
 pub const MAX_WORLD_COORDINATE: f32 = 65_536.0;
-/// Largest number of explosion-grid cells a level may ask for.
-pub const MAX_GRID_CELLS: u64 = 4_000_000;
 
 /// The default level, compiled into the library.
 pub const DEFAULT_LEVEL_RON: &str = include_str!("../../levels/default.ron");
@@ -175,16 +173,6 @@ impl Level {
             return Err(invalid(
                 "cell_size",
                 format!("must be in 4 ..= 4096 world units, got {cs}"),
-            ));
-        }
-        let cells =
-            ((b.max[0] - b.min[0]) / cs).ceil() as u64 * ((b.max[1] - b.min[1]) / cs).ceil() as u64;
-        if cells > MAX_GRID_CELLS {
-            return Err(invalid(
-                "cell_size",
-                format!(
-                    "{cs} gives {cells} grid cells over the bounds, over the limit of {MAX_GRID_CELLS}"
-                ),
             ));
         }
         if file.materials.is_empty() || file.materials.len() > 256 {

@@ -340,14 +340,12 @@ fn check_positive(name: &'static str, value: f32, limit: f32) -> Result<(), Terr
     }
 }
 
-impl<F: Sdf> Terrain<F> {
-    /// A terrain over `base` for events centred in `[bounds_min, bounds_max]`.
-    pub fn new(
-        base: F,
-        bounds_min: Vec2,
-        bounds_max: Vec2,
-        options: TerrainOptions,
-    ) -> Result<Self, TerrainError> {
+impl TerrainOptions {
+    /// Checks these options for a world `[bounds_min, bounds_max]` without allocating: the
+    /// values' ranges, the grid's cell count and the most memory its bricks could take.
+    /// Returns the rectangle the explosion grid covers (the bounds grown by the farthest
+    /// reach of an event).
+    pub fn check(&self, bounds_min: Vec2, bounds_max: Vec2) -> Result<(Vec2, Vec2), TerrainError> {
         for (name, value) in [
             ("min.x", bounds_min.x),
             ("min.y", bounds_min.y),
@@ -364,47 +362,44 @@ impl<F: Sdf> Terrain<F> {
                 max: bounds_max,
             });
         }
-        check_positive("cell_size", options.cell_size, MAX_COORD)?;
-        check_positive("band", options.band, MAX_COORD)?;
-        check_positive("max_event_radius", options.max_event_radius, MAX_COORD)?;
-        if !(options.max_rim.is_finite() && options.max_rim >= 0.0 && options.max_rim <= MAX_COORD)
-        {
+        check_positive("cell_size", self.cell_size, MAX_COORD)?;
+        check_positive("band", self.band, MAX_COORD)?;
+        check_positive("max_event_radius", self.max_event_radius, MAX_COORD)?;
+        if !(self.max_rim.is_finite() && self.max_rim >= 0.0 && self.max_rim <= MAX_COORD) {
             return Err(TerrainError::BadOption {
                 name: "max_rim",
-                value: options.max_rim.to_string(),
+                value: self.max_rim.to_string(),
                 reason: "must be finite, >= 0 and <= 65536",
             });
         }
-        if options.cell_cap == 0 {
+        if self.cell_cap == 0 {
             return Err(TerrainError::BadOption {
                 name: "cell_cap",
                 value: "0".into(),
                 reason: "must be at least 1",
             });
         }
-        if options.max_events == 0 || options.max_events > u32::MAX as usize {
+        if self.max_events == 0 || self.max_events > u32::MAX as usize {
             return Err(TerrainError::BadOption {
                 name: "max_events",
-                value: options.max_events.to_string(),
+                value: self.max_events.to_string(),
                 reason: "must be in 1..=4294967295",
             });
         }
-        if options.material_count == 0 {
+        if self.material_count == 0 {
             return Err(TerrainError::BadOption {
                 name: "material_count",
                 value: "0".into(),
                 reason: "must be at least 1",
             });
         }
-        let grow = options.max_event_radius + options.max_rim + options.band + 1.0;
-        let grid = Grid::new(
+        let grow = self.max_event_radius + self.max_rim + self.band + 1.0;
+        let (min, max) = (
             bounds_min - Vec2::splat(grow),
             bounds_max + Vec2::splat(grow),
-            options.cell_size,
-            options.brick_resolution,
-        )?;
-        let (nx, ny) = grid.dims();
-        let side = grid.brick_resolution() as u64 + 1;
+        );
+        let (nx, ny) = Grid::plan(min, max, self.cell_size, self.brick_resolution)?;
+        let side = self.brick_resolution as u64 + 1;
         // f32 value + u16 material per lattice point.
         let worst = nx as u64 * ny as u64 * side * side * 6;
         if worst > MAX_BRICK_BYTES {
@@ -412,11 +407,25 @@ impl<F: Sdf> Terrain<F> {
                 name: "brick_resolution",
                 value: format!(
                     "{} ({nx}x{ny} cells could take {worst} bytes of bricks)",
-                    options.brick_resolution
+                    self.brick_resolution
                 ),
                 reason: "cells x (resolution + 1)^2 x 6 bytes must stay within 1 GiB: lower the resolution or raise cell_size",
             });
         }
+        Ok((min, max))
+    }
+}
+
+impl<F: Sdf> Terrain<F> {
+    /// A terrain over `base` for events centred in `[bounds_min, bounds_max]`.
+    pub fn new(
+        base: F,
+        bounds_min: Vec2,
+        bounds_max: Vec2,
+        options: TerrainOptions,
+    ) -> Result<Self, TerrainError> {
+        let (min, max) = options.check(bounds_min, bounds_max)?;
+        let grid = Grid::new(min, max, options.cell_size, options.brick_resolution)?;
         Ok(Terrain {
             base,
             options,
