@@ -131,11 +131,6 @@ impl Aabb {
         Aabb::of_points(corners.map(|c| Vec2::new(cos * c.x - sin * c.y, sin * c.x + cos * c.y)))
     }
 
-    /// Centre and half extents (finite boxes only).
-    pub fn center_half(&self) -> (Vec2, Vec2) {
-        ((self.min + self.max) * 0.5, (self.max - self.min) * 0.5)
-    }
-
     /// True when the point lies inside or on the box.
     pub fn contains(&self, p: Vec2) -> bool {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
