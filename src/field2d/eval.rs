@@ -138,7 +138,38 @@ impl Graph {
                 (d + s.scale(*amplitude), m)
             }
             Op::Material(mat, c) => (self.eval(*c, p).0, *mat),
+            // Arithmetic: the material is the first operand's.
+            Op::X => (p.x, 0),
+            Op::Y => (p.y, 0),
+            Op::Const(c) => (N::constant(*c), 0),
+            Op::Add(a, b) => self.binary(*a, *b, p, |x, y| x + y),
+            Op::Sub(a, b) => self.binary(*a, *b, p, |x, y| x - y),
+            Op::Mul(a, b) => self.binary(*a, *b, p, |x, y| x * y),
+            Op::Neg(a) => {
+                let (d, m) = self.eval(*a, p);
+                (-d, m)
+            }
+            Op::Square(a) => {
+                let (d, m) = self.eval(*a, p);
+                (d * d, m)
+            }
+            Op::Sqrt(a) => {
+                let (d, m) = self.eval(*a, p);
+                (d.sqrt(), m)
+            }
         }
+    }
+
+    fn binary<N: Num>(
+        &self,
+        a: NodeId,
+        b: NodeId,
+        p: V2<N>,
+        f: impl Fn(N, N) -> N,
+    ) -> (N, MaterialId) {
+        let (da, m) = self.eval(a, p);
+        let (db, _) = self.eval(b, p);
+        (f(da, db), m)
     }
 
     fn fold<N: Num>(

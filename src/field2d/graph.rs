@@ -6,6 +6,7 @@
 //! and reports the node path of the first problem. Evaluation is in [`super::eval`].
 
 use std::collections::BTreeMap;
+use std::sync::{Arc, OnceLock};
 
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -16,6 +17,7 @@ use super::error::LevelError;
 use super::node::{Axis, Node, P2};
 use super::noise::NOISE_LIPSCHITZ;
 use super::sdf::MaterialId;
+use super::tape::Program;
 
 /// Index of a node in a compiled [`Graph`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -168,6 +170,15 @@ pub(crate) enum Op {
         child: NodeId,
     },
     Material(MaterialId, NodeId),
+    X,
+    Y,
+    Const(f32),
+    Add(NodeId, NodeId),
+    Sub(NodeId, NodeId),
+    Mul(NodeId, NodeId),
+    Neg(NodeId),
+    Square(NodeId),
+    Sqrt(NodeId),
 }
 
 /// Constants of a (finite or infinite) repetition.
@@ -199,6 +210,8 @@ pub struct Graph {
     pub(crate) ops: Vec<Op>,
     pub(crate) info: Vec<NodeInfo>,
     pub(crate) root: NodeId,
+    /// The lowered tape program, built on first use.
+    program: OnceLock<Arc<Program>>,
 }
 
 impl Graph {
@@ -234,7 +247,15 @@ impl Graph {
             ops: c.ops,
             info: c.info,
             root,
+            program: OnceLock::new(),
         })
+    }
+
+    /// The graph lowered to an SSA tape program (built once, then shared).
+    pub fn program(&self) -> Arc<Program> {
+        self.program
+            .get_or_init(|| Arc::new(crate::field2d::tape::lower::lower(self)))
+            .clone()
     }
 
     /// The root node.
@@ -843,9 +864,53 @@ impl Compiler<'_> {
                     },
                 )
             }
+            Node::X | Node::Y | Node::Const(_) => self.expression_leaf(node, path)?,
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => {
+                let ia = self.node(a, &format!("{path}[0]"), depth + 1)?;
+                let ib = self.node(b, &format!("{path}[1]"), depth + 1)?;
+                let (fa, fb) = (self.info_of(ia), self.info_of(ib));
+                let lipschitz = match node {
+                    Node::Mul(..) => mul_lipschitz(&self.ops, ia, fa, ib, fb),
+                    _ => fa.lipschitz + fb.lipschitz,
+                };
+                let op = match node {
+                    Node::Add(..) => Op::Add(ia, ib),
+                    Node::Sub(..) => Op::Sub(ia, ib),
+                    _ => Op::Mul(ia, ib),
+                };
+                (op, expression_info(lipschitz, fa.cost + fb.cost + 1))
+            }
+            Node::Neg(a) | Node::Square(a) | Node::Sqrt(a) => {
+                let ia = self.node(a, &format!("{path}[0]"), depth + 1)?;
+                let fa = self.info_of(ia);
+                let (op, lipschitz) = match node {
+                    Node::Neg(_) => (Op::Neg(ia), fa.lipschitz),
+                    Node::Square(_) => (Op::Square(ia), square_lipschitz(fa)),
+                    _ => (Op::Sqrt(ia), sqrt_lipschitz(&self.ops, &self.info, ia)),
+                };
+                (op, expression_info(lipschitz, fa.cost + 1))
+            }
             Node::Ref(_) => unreachable!("references are resolved above"),
         };
         self.push(op, info, path)
+    }
+
+    fn expression_leaf(&self, node: &Node, path: &str) -> Result<(Op, NodeInfo), LevelError> {
+        Ok(match node {
+            Node::X => (Op::X, expression_info(1.0, 1)),
+            Node::Y => (Op::Y, expression_info(1.0, 1)),
+            Node::Const(c) => {
+                // Constants of expressions are not coordinates: only finiteness is required.
+                if !c.is_finite() {
+                    return Err(LevelError::Invalid {
+                        path: path.into(),
+                        reason: format!("must be a finite number, got {c}"),
+                    });
+                }
+                (Op::Const(*c), expression_info(0.0, 1))
+            }
+            _ => unreachable!("only called for expression leaves"),
+        })
     }
 
     fn reference(&mut self, name: &str, path: &str, depth: usize) -> Result<NodeId, LevelError> {
@@ -1055,6 +1120,64 @@ impl Compiler<'_> {
             })),
             info,
         ))
+    }
+}
+
+/// Facts of an arithmetic expression node: a bound whose box is the whole plane.
+fn expression_info(lipschitz: f32, cost: u64) -> NodeInfo {
+    NodeInfo {
+        exactness: Exactness::Bound,
+        lipschitz,
+        bounds: Aabb::EVERYTHING,
+        cost,
+    }
+}
+
+/// `|grad (a b)| <= |c| L` when one factor is the constant `c`; unbounded otherwise.
+fn mul_lipschitz(ops: &[Op], ia: NodeId, fa: NodeInfo, ib: NodeId, fb: NodeInfo) -> f32 {
+    let constant = |id: NodeId| match ops.get(id.0 as usize) {
+        Some(Op::Const(c)) => Some(c.abs()),
+        _ => None,
+    };
+    match (constant(ia), constant(ib)) {
+        (Some(c), _) => c * fb.lipschitz,
+        (_, Some(c)) => c * fa.lipschitz,
+        _ if fa.lipschitz == 0.0 && fb.lipschitz == 0.0 => 0.0,
+        _ => f32::INFINITY,
+    }
+}
+
+/// A square has no global Lipschitz bound unless its argument is constant.
+fn square_lipschitz(fa: NodeInfo) -> f32 {
+    if fa.lipschitz == 0.0 {
+        0.0
+    } else {
+        f32::INFINITY
+    }
+}
+
+/// `sqrt(a² + b²)` is the norm of `(a, b)`: by Cauchy-Schwarz its gradient is at most
+/// `sqrt(La² + Lb²)`. Any other square root has no global bound (its slope is unbounded
+/// near zero) unless its argument is constant.
+fn sqrt_lipschitz(ops: &[Op], info: &[NodeInfo], ia: NodeId) -> f32 {
+    let at = |id: NodeId| ops.get(id.0 as usize);
+    let lip = |id: NodeId| {
+        info.get(id.0 as usize)
+            .map_or(f32::INFINITY, |i| i.lipschitz)
+    };
+    if lip(ia) == 0.0 {
+        return 0.0;
+    }
+    // (No let-chains: the deterministic core also builds with older cross toolchains.)
+    match at(ia) {
+        Some(Op::Add(s, t)) => match (at(*s), at(*t)) {
+            (Some(Op::Square(a)), Some(Op::Square(b))) => {
+                let (la, lb) = (lip(*a), lip(*b));
+                (la * la + lb * lb).sqrt() * 1.000_001
+            }
+            _ => f32::INFINITY,
+        },
+        _ => f32::INFINITY,
     }
 }
 

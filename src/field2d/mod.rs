@@ -6,8 +6,10 @@ pub mod detmath;
 pub mod error;
 pub mod eval;
 pub mod event;
+pub(crate) mod exec;
 pub mod graph;
 pub mod grid;
+pub mod import;
 pub mod level;
 #[cfg(feature = "mesh")]
 pub mod mesh;
@@ -17,6 +19,8 @@ pub mod primitives;
 pub mod quant;
 pub mod query;
 pub mod sdf;
+pub mod simd;
+pub mod tape;
 pub mod terrain;
 
 pub use aabb::Aabb;

@@ -280,6 +280,30 @@ pub enum Node {
     },
     /// A reference to a named node of the level.
     Ref(String),
+
+    // ---- arithmetic expressions ---------------------------------------------------------
+    // Plain arithmetic on the query point, so that external implicit expressions (for
+    // example the SSA text format read by `crate::field2d::import`) can be terrains. Their
+    // Lipschitz bound is derived by rules (see `graph`) and may be infinite; their bounding
+    // box is the whole plane. `min`/`max` are `Union`/`Intersection`.
+    /// The query point's x coordinate.
+    X,
+    /// The query point's y coordinate.
+    Y,
+    /// A constant.
+    Const(f32),
+    /// `a + b`.
+    Add(Box<Node>, Box<Node>),
+    /// `a - b`.
+    Sub(Box<Node>, Box<Node>),
+    /// `a * b`.
+    Mul(Box<Node>, Box<Node>),
+    /// `-a`.
+    Neg(Box<Node>),
+    /// `a * a`.
+    Square(Box<Node>),
+    /// `sqrt(a)` (NaN below zero, as IEEE-754 defines it).
+    Sqrt(Box<Node>),
 }
 
 impl Node {
@@ -316,6 +340,15 @@ impl Node {
             Node::DisplaceWave { .. } => "DisplaceWave",
             Node::Material { .. } => "Material",
             Node::Ref(_) => "Ref",
+            Node::X => "X",
+            Node::Y => "Y",
+            Node::Const(_) => "Const",
+            Node::Add(..) => "Add",
+            Node::Sub(..) => "Sub",
+            Node::Mul(..) => "Mul",
+            Node::Neg(_) => "Neg",
+            Node::Square(_) => "Square",
+            Node::Sqrt(_) => "Sqrt",
         }
     }
 }
@@ -351,6 +384,10 @@ impl Node {
             | Node::DisplaceNoise { node, .. }
             | Node::DisplaceWave { node, .. }
             | Node::Material { node, .. } => vec![(".node".into(), node.as_ref())],
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => {
+                vec![("[0]".into(), a.as_ref()), ("[1]".into(), b.as_ref())]
+            }
+            Node::Neg(a) | Node::Square(a) | Node::Sqrt(a) => vec![("[0]".into(), a.as_ref())],
             _ => Vec::new(),
         }
     }

@@ -1,0 +1,184 @@
+//! Batch evaluation of a [`Tape`] over slices of points, on a chosen backend.
+
+use glam::Vec2;
+
+use super::{Dv, Fv, Val, block_registers, load_points, run_tape};
+use crate::field2d::sdf::{MaterialId, Sample};
+use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
+use crate::field2d::tape::{MatOut, Tape};
+
+/// Why a batch evaluation could not run.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EvalError {
+    /// The output slice is not as long as the input.
+    #[error("output has {output} slots for {input} points")]
+    LengthMismatch {
+        /// Points given.
+        input: usize,
+        /// Output slots given.
+        output: usize,
+    },
+    /// The backend cannot run here.
+    #[error(transparent)]
+    Backend(#[from] BackendError),
+}
+
+fn check(input: usize, output: usize) -> Result<(), EvalError> {
+    if input == output {
+        Ok(())
+    } else {
+        Err(EvalError::LengthMismatch { input, output })
+    }
+}
+
+/// The per-backend scratch of a block: coordinates and registers.
+pub(crate) struct Block<L: Lanes, V> {
+    pub nb: usize,
+    pub xs: Vec<L::F>,
+    pub ys: Vec<L::F>,
+    pub regs: Vec<V>,
+}
+
+impl<L: Lanes, V: Val<L>> Block<L, V> {
+    #[inline(always)]
+    pub fn new(l: L, tape: &Tape) -> Self {
+        let nb = block_registers::<L>();
+        Block {
+            nb,
+            xs: Vec::with_capacity(nb),
+            ys: Vec::with_capacity(nb),
+            regs: vec![V::cst(l, 0.0); tape.registers() * nb],
+        }
+    }
+
+    /// Runs the tape on up to `nb * WIDTH` points.
+    #[inline(always)]
+    pub fn run(&mut self, l: L, tape: &Tape, points: &[Vec2]) {
+        let need = tape.registers() * self.nb;
+        if self.regs.len() < need {
+            self.regs.resize(need, V::cst(l, 0.0));
+        }
+        load_points(l, points, &mut self.xs, &mut self.ys, self.nb);
+        run_tape(l, tape, &mut self.regs, &self.xs, &self.ys);
+    }
+
+    /// The value register `reg`'s lane register `r`.
+    #[inline(always)]
+    pub fn get(&self, reg: u32, r: usize) -> V {
+        self.regs[reg as usize * self.nb + r]
+    }
+
+    /// Materials of lane register `r` (`out` gets `WIDTH` entries).
+    #[inline(always)]
+    pub fn materials(&self, l: L, tape: &Tape, r: usize, out: &mut [MaterialId; 16]) {
+        match tape.material {
+            MatOut::Const(m) => out.fill(m),
+            MatOut::Value(reg) => {
+                let mut bits = [0i32; 16];
+                l.store_i(l.bits_int(self.get(reg, r).v()), &mut bits);
+                for (o, b) in out.iter_mut().zip(bits) {
+                    *o = b as MaterialId;
+                }
+            }
+        }
+    }
+}
+
+struct Distances<'a> {
+    tape: &'a Tape,
+    points: &'a [Vec2],
+    out: &'a mut [f32],
+}
+
+impl Kernel for Distances<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes>(self, l: L) {
+        let mut block = Block::<L, Fv<L>>::new(l, self.tape);
+        let step = block.nb * L::WIDTH;
+        let mut lanes = [0.0f32; 16];
+        for (pts, out) in self.points.chunks(step).zip(self.out.chunks_mut(step)) {
+            block.run(l, self.tape, pts);
+            for (r, out) in out.chunks_mut(L::WIDTH).enumerate() {
+                l.store(block.get(self.tape.value, r).0, &mut lanes);
+                out.copy_from_slice(&lanes[..out.len()]);
+            }
+        }
+    }
+}
+
+struct Samples<'a> {
+    tape: &'a Tape,
+    points: &'a [Vec2],
+    out: &'a mut [Sample],
+}
+
+impl Kernel for Samples<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes>(self, l: L) {
+        let mut block = Block::<L, Dv<L>>::new(l, self.tape);
+        let step = block.nb * L::WIDTH;
+        let (mut v, mut gx, mut gy) = ([0.0f32; 16], [0.0f32; 16], [0.0f32; 16]);
+        let mut mats = [0; 16];
+        for (pts, out) in self.points.chunks(step).zip(self.out.chunks_mut(step)) {
+            block.run(l, self.tape, pts);
+            for (r, out) in out.chunks_mut(L::WIDTH).enumerate() {
+                let d = block.get(self.tape.value, r);
+                l.store(d.v, &mut v);
+                l.store(d.dx, &mut gx);
+                l.store(d.dy, &mut gy);
+                block.materials(l, self.tape, r, &mut mats);
+                for (k, s) in out.iter_mut().enumerate() {
+                    *s = Sample {
+                        distance: v[k],
+                        gradient: Vec2::new(gx[k], gy[k]),
+                        material: mats[k],
+                    };
+                }
+            }
+        }
+    }
+}
+
+impl Tape {
+    /// Distances at `points` into `out` on `backend`.
+    pub fn distances(
+        &self,
+        points: &[Vec2],
+        out: &mut [f32],
+        backend: Backend,
+    ) -> Result<(), EvalError> {
+        check(points.len(), out.len())?;
+        simd::run(
+            backend,
+            Distances {
+                tape: self,
+                points,
+                out,
+            },
+        )?;
+        Ok(())
+    }
+
+    /// Distance, gradient and material at `points` into `out` on `backend` (the material
+    /// is 0 unless the tape computes materials, see [`crate::field2d::tape::Outputs`]).
+    pub fn samples(
+        &self,
+        points: &[Vec2],
+        out: &mut [Sample],
+        backend: Backend,
+    ) -> Result<(), EvalError> {
+        check(points.len(), out.len())?;
+        simd::run(
+            backend,
+            Samples {
+                tape: self,
+                points,
+                out,
+            },
+        )?;
+        Ok(())
+    }
+}

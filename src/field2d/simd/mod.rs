@@ -1,0 +1,349 @@
+//! Lane primitives of the tape evaluator, one module per instruction set, and the one place
+//! that chooses among them.
+//!
+//! A backend is a zero-sized token type implementing [`Lanes`]: the operations of one SIMD
+//! register of `f32` lanes (and of the masks and `i32` lanes that go with it). The tape
+//! interpreter (`super::exec`) is written once, generic over `Lanes`, and instantiated per
+//! backend. The tokens of the SIMD backends can only be made after runtime detection of
+//! their instruction set, which is what makes their `unsafe` intrinsics sound; `unsafe`
+//! lives only in the per-architecture files.
+//!
+//! Every operation is exactly rounded or a bit operation, with the project's semantics
+//! (DESIGN.md, the determinism contract): `min(a, b) = if a < b { a } else { b }`, `max`
+//! likewise, comparisons are ordered (false on NaN), `floor` keeps the sign of zero, and
+//! float-to-int conversion saturates with NaN giving 0 (Rust's `as i32`). No FMA, no
+//! estimates, no horizontal reductions: a lane computes what the scalar code computes.
+//!
+//! Choosing: [`Backend::best`] picks the widest available set, unless the environment
+//! variable `CRATERFIELD_BACKEND` (`scalar`, `sse2`, `avx2`, `avx512`, `neon`) names one;
+//! APIs also take an explicit [`Backend`]. Building with the feature `force-scalar` makes
+//! the scalar backend the only one.
+
+use std::fmt;
+use std::str::FromStr;
+use std::sync::OnceLock;
+
+use thiserror::Error;
+
+pub mod scalar;
+
+#[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+pub mod avx2;
+#[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+pub mod avx512;
+#[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
+pub mod neon;
+#[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+pub mod sse2;
+
+/// The environment variable that forces a backend.
+pub const BACKEND_ENV: &str = "CRATERFIELD_BACKEND";
+
+/// The operations of one register of `f32` lanes. See the module doc for the semantics.
+pub trait Lanes: Copy + Send + Sync + 'static {
+    /// Lanes per register.
+    const WIDTH: usize;
+    /// `WIDTH` floats.
+    type F: Copy;
+    /// `WIDTH` booleans.
+    type M: Copy;
+    /// `WIDTH` 32-bit integers.
+    type I: Copy;
+
+    /// Every lane `v`.
+    fn splat(self, v: f32) -> Self::F;
+    /// Lanes from `s[..WIDTH]`.
+    fn load(self, s: &[f32]) -> Self::F;
+    /// Writes the lanes to `out[..WIDTH]`.
+    fn store(self, v: Self::F, out: &mut [f32]);
+    /// `a + b`.
+    fn add(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a - b`.
+    fn sub(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a * b`.
+    fn mul(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a / b`.
+    fn div(self, a: Self::F, b: Self::F) -> Self::F;
+    /// Correctly rounded square root.
+    fn sqrt(self, a: Self::F) -> Self::F;
+    /// Sign flipped.
+    fn neg(self, a: Self::F) -> Self::F;
+    /// Sign cleared.
+    fn abs(self, a: Self::F) -> Self::F;
+    /// Round towards minus infinity; `-0.0` stays `-0.0`, NaN stays NaN.
+    fn floor(self, a: Self::F) -> Self::F;
+    /// `if a < b { a } else { b }`.
+    fn min(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `if a > b { a } else { b }`.
+    fn max(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a < b` (false on NaN).
+    fn lt(self, a: Self::F, b: Self::F) -> Self::M;
+    /// `a > b` (false on NaN).
+    fn gt(self, a: Self::F, b: Self::F) -> Self::M;
+    /// `a <= b` (false on NaN).
+    fn le(self, a: Self::F, b: Self::F) -> Self::M;
+    /// `a >= b` (false on NaN).
+    fn ge(self, a: Self::F, b: Self::F) -> Self::M;
+    /// `a == a` (false on NaN).
+    fn not_nan(self, a: Self::F) -> Self::M;
+    /// `if m { a } else { b }` per lane.
+    fn select(self, m: Self::M, a: Self::F, b: Self::F) -> Self::F;
+    /// `if m { a } else { b }` per lane.
+    fn select_i(self, m: Self::M, a: Self::I, b: Self::I) -> Self::I;
+    /// Lanewise and.
+    fn and(self, a: Self::M, b: Self::M) -> Self::M;
+    /// Lanewise or.
+    fn or(self, a: Self::M, b: Self::M) -> Self::M;
+    /// Lanewise exclusive or.
+    fn xor(self, a: Self::M, b: Self::M) -> Self::M;
+    /// Lanewise not.
+    fn not(self, a: Self::M) -> Self::M;
+    /// Whether any lane is set (loop control only, never a value).
+    fn any(self, m: Self::M) -> bool;
+    /// Every lane `v`.
+    fn splat_i(self, v: i32) -> Self::I;
+    /// Lanes from `s[..WIDTH]`.
+    fn load_i(self, s: &[i32]) -> Self::I;
+    /// Writes the lanes to `out[..WIDTH]`.
+    fn store_i(self, v: Self::I, out: &mut [i32]);
+    /// `v as i32` (truncating, saturating, NaN gives 0).
+    fn to_i32(self, v: Self::F) -> Self::I;
+    /// `v as f32` (round to nearest even).
+    fn to_f32(self, v: Self::I) -> Self::F;
+    /// Wrapping `a + b`.
+    fn add_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// Wrapping `a * b`.
+    fn mul_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `a ^ b`.
+    fn xor_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// Logical shift right of the 32 bits by `n` (< 32).
+    fn shr_i(self, a: Self::I, n: u32) -> Self::I;
+    /// `a < b` (signed).
+    fn lt_i(self, a: Self::I, b: Self::I) -> Self::M;
+    /// `a > b` (signed).
+    fn gt_i(self, a: Self::I, b: Self::I) -> Self::M;
+    /// The mask's bits as floats (all ones or zero), for storage in a float register.
+    fn mask_bits(self, m: Self::M) -> Self::F;
+    /// A mask from bits stored by [`Lanes::mask_bits`].
+    fn bits_mask(self, f: Self::F) -> Self::M;
+    /// The integers' bits as floats, for storage in a float register.
+    fn int_bits(self, i: Self::I) -> Self::F;
+    /// Integers from bits stored by [`Lanes::int_bits`].
+    fn bits_int(self, f: Self::F) -> Self::I;
+}
+
+/// An instruction set the evaluator can run on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Backend {
+    /// One lane, plain Rust; every platform.
+    Scalar,
+    /// 4 lanes, x86_64 baseline.
+    Sse2,
+    /// 8 lanes, x86_64 with AVX2 (no FMA is used).
+    Avx2,
+    /// 16 lanes, x86_64 with AVX-512F.
+    Avx512,
+    /// 4 lanes, aarch64 Advanced SIMD.
+    Neon,
+}
+
+/// A backend that this CPU (or this build) cannot run, or a name no backend has.
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+#[non_exhaustive]
+pub enum BackendError {
+    /// The backend exists but this CPU or build lacks it.
+    #[error("backend {backend} is not available on this machine (available: {available})")]
+    Unavailable {
+        /// The backend asked for.
+        backend: Backend,
+        /// What is available, comma-separated.
+        available: String,
+    },
+    /// The name is not a backend.
+    #[error("unknown backend `{name}` (expected scalar, sse2, avx2, avx512 or neon)")]
+    UnknownName {
+        /// The name given.
+        name: String,
+    },
+}
+
+impl Backend {
+    /// Every backend, narrowest first.
+    pub const ALL: [Backend; 5] = [
+        Backend::Scalar,
+        Backend::Sse2,
+        Backend::Avx2,
+        Backend::Avx512,
+        Backend::Neon,
+    ];
+
+    /// The lowercase name (`scalar`, `sse2`, `avx2`, `avx512`, `neon`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Scalar => "scalar",
+            Backend::Sse2 => "sse2",
+            Backend::Avx2 => "avx2",
+            Backend::Avx512 => "avx512",
+            Backend::Neon => "neon",
+        }
+    }
+
+    /// Lanes per register.
+    pub fn width(self) -> usize {
+        match self {
+            Backend::Scalar => 1,
+            Backend::Sse2 | Backend::Neon => 4,
+            Backend::Avx2 => 8,
+            Backend::Avx512 => 16,
+        }
+    }
+
+    /// Whether this machine and build can run the backend.
+    pub fn is_available(self) -> bool {
+        match self {
+            Backend::Scalar => true,
+            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+            Backend::Sse2 => sse2::Sse2::new().is_some(),
+            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+            Backend::Avx2 => avx2::Avx2::new().is_some(),
+            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+            Backend::Avx512 => avx512::Avx512::new().is_some(),
+            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
+            Backend::Neon => neon::Neon::new().is_some(),
+            #[allow(unreachable_patterns)]
+            _ => false,
+        }
+    }
+
+    /// The backends this machine can run, narrowest first.
+    pub fn available() -> Vec<Backend> {
+        Backend::ALL
+            .into_iter()
+            .filter(|b| b.is_available())
+            .collect()
+    }
+
+    /// `Ok(self)` if available, else an error listing what is.
+    pub fn check(self) -> Result<Backend, BackendError> {
+        if self.is_available() {
+            Ok(self)
+        } else {
+            Err(unavailable(self))
+        }
+    }
+
+    /// The widest available backend.
+    pub fn widest() -> Backend {
+        Backend::available()
+            .into_iter()
+            .max_by_key(|b| b.width())
+            .unwrap_or(Backend::Scalar)
+    }
+
+    /// The backend to use by default: the one named by `CRATERFIELD_BACKEND` if set, else
+    /// the widest available. Read once per process. A name that is unknown or unavailable
+    /// here is reported on standard error once and the widest is used instead.
+    pub fn best() -> Backend {
+        static CHOSEN: OnceLock<Backend> = OnceLock::new();
+        *CHOSEN.get_or_init(|| match std::env::var(BACKEND_ENV) {
+            Ok(name) => match name.parse::<Backend>().and_then(Backend::check) {
+                Ok(b) => b,
+                Err(e) => {
+                    eprintln!("{BACKEND_ENV}: {e}; using {}", Backend::widest());
+                    Backend::widest()
+                }
+            },
+            Err(_) => Backend::widest(),
+        })
+    }
+}
+
+impl fmt::Display for Backend {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Backend {
+    type Err = BackendError;
+    fn from_str(s: &str) -> Result<Backend, BackendError> {
+        Backend::ALL
+            .into_iter()
+            .find(|b| b.name() == s.trim().to_ascii_lowercase())
+            .ok_or_else(|| BackendError::UnknownName { name: s.into() })
+    }
+}
+
+fn unavailable(backend: Backend) -> BackendError {
+    BackendError::Unavailable {
+        backend,
+        available: Backend::available()
+            .iter()
+            .map(|b| b.name())
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
+}
+
+/// Work generic over the lanes: [`run`] instantiates it for a backend. `run` (the method)
+/// must be `#[inline(always)]`, and so must everything it calls that touches lanes: the
+/// SIMD backends call it from a function compiled with their instruction set enabled, and
+/// only code inlined there is compiled with it.
+pub(crate) trait Kernel {
+    /// What the work returns.
+    type Output;
+    /// Does the work on lanes `l`.
+    fn run<L: Lanes>(self, l: L) -> Self::Output;
+}
+
+/// Runs `k` on `backend`: the one place that turns a [`Backend`] value into code.
+pub(crate) fn run<K: Kernel>(backend: Backend, k: K) -> Result<K::Output, BackendError> {
+    match backend {
+        Backend::Scalar => Ok(k.run(scalar::Scalar)),
+        #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+        Backend::Sse2 => match sse2::Sse2::new() {
+            Some(l) => Ok(l.call(k)),
+            None => Err(unavailable(backend)),
+        },
+        #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+        Backend::Avx2 => match avx2::Avx2::new() {
+            Some(l) => Ok(l.call(k)),
+            None => Err(unavailable(backend)),
+        },
+        #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+        Backend::Avx512 => match avx512::Avx512::new() {
+            Some(l) => Ok(l.call(k)),
+            None => Err(unavailable(backend)),
+        },
+        #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
+        Backend::Neon => match neon::Neon::new() {
+            Some(l) => Ok(l.call(k)),
+            None => Err(unavailable(backend)),
+        },
+        #[allow(unreachable_patterns)]
+        _ => Err(unavailable(backend)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_scalar_is_always_there() {
+        for b in Backend::ALL {
+            assert_eq!(b.name().parse::<Backend>(), Ok(b));
+        }
+        assert!(Backend::Scalar.is_available());
+        assert!(Backend::available().contains(&Backend::Scalar));
+        let e = "mmx".parse::<Backend>().unwrap_err();
+        assert!(e.to_string().contains("mmx"), "{e}");
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn neon_is_unavailable_on_x86() {
+        let e = Backend::Neon.check().unwrap_err().to_string();
+        assert!(e.contains("neon") && e.contains("scalar"), "{e}");
+    }
+}
