@@ -269,4 +269,8 @@ impl Sdf for Graph {
     fn lipschitz(&self) -> f32 {
         self.root_info().lipschitz
     }
+
+    fn program(&self) -> Option<std::sync::Arc<crate::field2d::tape::Program>> {
+        Some(Graph::program(self))
+    }
 }

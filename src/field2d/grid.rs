@@ -417,6 +417,11 @@ impl Grid {
             .unwrap_or(0)
     }
 
+    /// Brick `id`, if it exists.
+    pub(crate) fn brick(&self, id: u32) -> Option<&Brick> {
+        self.bricks.get(id as usize)
+    }
+
     /// Number of live bricks.
     pub(crate) fn live_bricks(&self) -> usize {
         self.bricks.len() - self.free_bricks.len()

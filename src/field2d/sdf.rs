@@ -33,6 +33,13 @@ pub trait Sdf {
     }
     /// An upper bound on `|distance(a) - distance(b)| / |a - b|` (1 for exact fields).
     fn lipschitz(&self) -> f32;
+    /// The field as a tape program, if it has one: a [`crate::field2d::Terrain`] over such
+    /// a field evaluates it with the tape evaluators (region-specialized, SIMD batches)
+    /// instead of calling [`Sdf::distance`] and [`Sdf::sample`] point by point. The
+    /// program must compute exactly what those methods compute.
+    fn program(&self) -> Option<std::sync::Arc<crate::field2d::tape::Program>> {
+        None
+    }
 }
 
 impl<T: Sdf + ?Sized> Sdf for &T {
@@ -47,5 +54,8 @@ impl<T: Sdf + ?Sized> Sdf for &T {
     }
     fn lipschitz(&self) -> f32 {
         (**self).lipschitz()
+    }
+    fn program(&self) -> Option<std::sync::Arc<crate::field2d::tape::Program>> {
+        (**self).program()
     }
 }

@@ -7,6 +7,7 @@
 //! integers (repetition indices, materials) are stored as bits in a register's value part.
 
 pub(crate) mod batch;
+pub(crate) mod point;
 pub(crate) mod prims;
 pub(crate) mod value;
 

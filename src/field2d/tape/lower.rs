@@ -29,9 +29,19 @@ pub(crate) struct Builder {
     pub(crate) params: Vec<u32>,
     cse: HashMap<Instr, u32>,
     param_blocks: HashMap<Vec<u32>, u32>,
+    /// Parameters shared with the program being rewritten (instead of `params`).
+    shared: Option<Arc<Vec<u32>>>,
 }
 
 impl Builder {
+    /// A builder rewriting a program whose parameters it keeps.
+    pub(crate) fn rewriting(params: Arc<Vec<u32>>) -> Builder {
+        Builder {
+            shared: Some(params),
+            ..Builder::default()
+        }
+    }
+
     /// Adds `op(a, b, c; imm)` or returns an existing identical value.
     pub(crate) fn push(&mut self, op: Op, a: u32, b: u32, c: u32, imm: u32) -> u32 {
         let n = op.arity();
@@ -183,7 +193,7 @@ impl Builder {
         }
         Program {
             ops,
-            params: Arc::new(self.params),
+            params: self.shared.unwrap_or_else(|| Arc::new(self.params)),
             value: remap[value as usize],
             material: match material {
                 Mat::Const(c) => MatOut::Const(c),

@@ -20,8 +20,10 @@
 //!    instruction has an immediate form, and values get registers by a linear scan that
 //!    reuses a register as soon as its value's last use has passed.
 
+pub mod interval;
 pub mod lower;
 pub mod regalloc;
+pub mod specialize;
 
 use std::sync::Arc;
 

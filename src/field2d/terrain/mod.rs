@@ -68,6 +68,9 @@
 //! gradient and the material of a brick cell are approximations. Each cell holds at most
 //! one brick, so brick memory is bounded by the cell count times `(n+1)^2` samples.
 
+mod batch;
+mod plan;
+
 use std::collections::BTreeSet;
 
 use glam::Vec2;
@@ -76,9 +79,12 @@ use thiserror::Error;
 
 use super::detmath::{Dual, Num, V2, max, nclamp, nmax, nmin};
 use super::event::{Event, EventError, EventKind};
+use super::exec;
 use super::grid::{self, Brick, CellState, Grid, GridError, GridStats, MaterialSource};
 use super::quant::FIXED_ONE;
 use super::sdf::{MaterialId, Sample, Sdf};
+use super::simd::Backend;
+use plan::{CellPlan, Plans};
 
 /// Largest accepted world coordinate magnitude (bounds, and so event centres).
 pub const MAX_COORD: f32 = 65536.0;
@@ -213,6 +219,10 @@ pub struct Terrain<F: Sdf> {
     grid: Grid,
     /// Cells whose list exceeds the cap because unsettled events block baking.
     over_cap: BTreeSet<usize>,
+    /// The base's per-cell tapes, when the base is a tape program (a level graph).
+    plans: Option<Plans>,
+    /// The backend of batch queries.
+    backend: Backend,
 }
 
 /// The numbers the field runs on: `f32` for distances, [`Dual`] for samples.
@@ -222,6 +232,8 @@ trait Lift: Num {
     fn point(p: Vec2) -> V2<Self>;
     /// The base field at `p`; `material` asks the `f32` path to report the material too.
     fn base<F: Sdf>(f: &F, p: Vec2, material: bool) -> (Self, MaterialId);
+    /// The same from the base's tapes for the region holding `p`.
+    fn tape(plan: &CellPlan, p: Vec2, material: bool) -> (Self, MaterialId);
 }
 
 impl Lift for f32 {
@@ -234,6 +246,13 @@ impl Lift for f32 {
             f.distance_material(p)
         } else {
             (f.distance(p), 0)
+        }
+    }
+    fn tape(plan: &CellPlan, p: Vec2, material: bool) -> (f32, MaterialId) {
+        if material {
+            exec::point::value(&plan.material, p)
+        } else {
+            (exec::point::value(&plan.value, p).0, 0)
         }
     }
 }
@@ -254,6 +273,9 @@ impl Lift for Dual {
             },
             s.material,
         )
+    }
+    fn tape(plan: &CellPlan, p: Vec2, _material: bool) -> (Dual, MaterialId) {
+        exec::point::dual(&plan.material, p)
     }
 }
 
@@ -426,6 +448,9 @@ impl<F: Sdf> Terrain<F> {
     ) -> Result<Self, TerrainError> {
         let (min, max) = options.check(bounds_min, bounds_max)?;
         let grid = Grid::new(min, max, options.cell_size, options.brick_resolution)?;
+        let plans = base
+            .program()
+            .map(|program| Plans::new(program, grid.cells.len()));
         Ok(Terrain {
             base,
             options,
@@ -434,6 +459,8 @@ impl<F: Sdf> Terrain<F> {
             events: Vec::new(),
             grid,
             over_cap: BTreeSet::new(),
+            plans,
+            backend: Backend::best(),
         })
     }
 
@@ -704,10 +731,23 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// `clamp(base(p), -M, M)`.
-    fn base_clamped<N: Lift, const MAT: bool>(&self, p: Vec2) -> (N, MaterialId) {
+    fn base_clamped<N: Lift, const MAT: bool>(
+        &self,
+        p: Vec2,
+        cell: Option<usize>,
+    ) -> (N, MaterialId) {
         let m = self.options.band;
-        let (d, mat) = N::base(&self.base, p, MAT);
+        let (d, mat) = self.base_at::<N>(p, cell, MAT);
         (nclamp(d, -m, m), mat)
+    }
+
+    /// The base field at `p` (in `cell`): from the cell's tape when the base has a
+    /// program, else from the base itself. Both give the same bits.
+    fn base_at<N: Lift>(&self, p: Vec2, cell: Option<usize>, material: bool) -> (N, MaterialId) {
+        match &self.plans {
+            Some(plans) => N::tape(plans.get(&self.grid, cell), p, material),
+            None => N::base(&self.base, p, material),
+        }
     }
 
     /// The field at `p` in `cell` from the cell's state and the first `upto` listed events.
@@ -719,15 +759,15 @@ impl<F: Sdf> Terrain<F> {
     ) -> (N, MaterialId) {
         let m = self.options.band;
         let Some(c) = self.grid.cells.get(cell) else {
-            return self.base_clamped::<N, MAT>(p);
+            return self.base_clamped::<N, MAT>(p, None);
         };
         let pn = N::point(p);
         let (mut d, mut mat) = match c.state.0 {
-            CellState::Base => self.base_clamped::<N, MAT>(p),
+            CellState::Base => self.base_clamped::<N, MAT>(p, Some(cell)),
             CellState::Air(src) => {
                 let mat = if N::MATERIAL || MAT {
                     match src {
-                        MaterialSource::Base => N::base(&self.base, p, true).1,
+                        MaterialSource::Base => self.base_at::<N>(p, Some(cell), true).1,
                         MaterialSource::Constant(m) => m,
                         MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
                     }
@@ -739,7 +779,7 @@ impl<F: Sdf> Terrain<F> {
             CellState::Solid(mat) => (N::constant(-m), mat),
             CellState::Brick(id) => match self.grid.interpolate(id, cell, pn) {
                 Some(x) => x,
-                None => self.base_clamped::<N, MAT>(p),
+                None => self.base_clamped::<N, MAT>(p, Some(cell)),
             },
         };
         for &i in c.events.iter().take(upto) {
@@ -756,7 +796,7 @@ impl<F: Sdf> Terrain<F> {
         }
         match self.grid.cell_index(p) {
             Some(cell) => self.eval_cell::<N, MAT>(p, cell, usize::MAX),
-            None => self.base_clamped::<N, MAT>(p),
+            None => self.base_clamped::<N, MAT>(p, None),
         }
     }
 
@@ -765,7 +805,10 @@ impl<F: Sdf> Terrain<F> {
             return (N::constant(f32::NAN), 0);
         }
         let pn = N::point(p);
-        let (mut d, mut mat) = self.base_clamped::<N, true>(p);
+        // The reference: the base's own evaluation (the graph walker for a level).
+        let band = self.options.band;
+        let (d0, mat0) = N::base(&self.base, p, true);
+        let (mut d, mut mat) = (nclamp(d0, -band, band), mat0);
         for e in &self.events {
             (d, mat) = apply_event(d, mat, pn, e, self.tick, self.options.band);
         }

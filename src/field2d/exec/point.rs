@@ -1,0 +1,70 @@
+//! Single-point evaluation of a tape on the scalar backend, with a per-thread register
+//! file so a query allocates nothing.
+
+use std::cell::RefCell;
+
+use glam::Vec2;
+
+use super::{Dv, Fv, run_tape};
+use crate::field2d::detmath::Dual;
+use crate::field2d::sdf::MaterialId;
+use crate::field2d::simd::scalar::Scalar;
+use crate::field2d::tape::{MatOut, Tape};
+
+thread_local! {
+    static PLAIN: RefCell<Vec<Fv<Scalar>>> = const { RefCell::new(Vec::new()) };
+    static DUAL: RefCell<Vec<Dv<Scalar>>> = const { RefCell::new(Vec::new()) };
+}
+
+fn material_of(tape: &Tape, bits: f32) -> MaterialId {
+    match tape.material {
+        MatOut::Const(m) => m,
+        MatOut::Value(_) => bits.to_bits() as MaterialId,
+    }
+}
+
+/// The value (and the material, if the tape computes it) at `p`.
+pub(crate) fn value(tape: &Tape, p: Vec2) -> (f32, MaterialId) {
+    PLAIN.with(|regs| {
+        let mut regs = regs.borrow_mut();
+        if regs.len() < tape.registers {
+            regs.resize(tape.registers, Fv(0.0));
+        }
+        run_tape(Scalar, tape, &mut regs, &[p.x], &[p.y]);
+        let v = regs[tape.value as usize].0;
+        let m = match tape.material {
+            MatOut::Value(r) => material_of(tape, regs[r as usize].0),
+            MatOut::Const(m) => m,
+        };
+        (v, m)
+    })
+}
+
+/// The value with its gradient, and the material, at `p`.
+pub(crate) fn dual(tape: &Tape, p: Vec2) -> (Dual, MaterialId) {
+    DUAL.with(|regs| {
+        let mut regs = regs.borrow_mut();
+        let zero = Dv {
+            v: 0.0,
+            dx: 0.0,
+            dy: 0.0,
+        };
+        if regs.len() < tape.registers {
+            regs.resize(tape.registers, zero);
+        }
+        run_tape(Scalar, tape, &mut regs, &[p.x], &[p.y]);
+        let d = regs[tape.value as usize];
+        let m = match tape.material {
+            MatOut::Value(r) => material_of(tape, regs[r as usize].v),
+            MatOut::Const(m) => m,
+        };
+        (
+            Dual {
+                v: d.v,
+                dx: d.dx,
+                dy: d.dy,
+            },
+            m,
+        )
+    })
+}

@@ -1,0 +1,486 @@
+//! Batch queries: distances and samples for slices of points (many bodies, render tiles,
+//! mesh extraction), on a SIMD backend, cell-coherent.
+//!
+//! Points are grouped by grid cell (a counting sort, or a comparison sort for batches much
+//! smaller than the grid). Each cell's group then runs in lane blocks: the cell's
+//! specialized base tape (or its constant, baked or carved state), the clamp, and the
+//! cell's events, one event at a time across all lanes. Every step mirrors the single-point
+//! path of [`super::Terrain`], so each result has the same bits as [`Sdf::distance`] and
+//! [`Sdf::sample`] at that point, whatever the backend, batch size or order.
+
+use glam::Vec2;
+
+use super::Terrain;
+use super::plan::CellPlan;
+use crate::field2d::event::{Event, EventKind};
+use crate::field2d::exec::batch::Block;
+use crate::field2d::exec::value::clamp;
+use crate::field2d::exec::{Dv, Fv, P2, Val};
+use crate::field2d::grid::{CellState, MaterialSource};
+use crate::field2d::sdf::{MaterialId, Sample, Sdf};
+use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
+use crate::field2d::tape::EvalError;
+
+/// Points of one cell (`None`: outside the grid), as a range of the sorted order.
+struct Group {
+    cell: Option<usize>,
+    start: usize,
+    end: usize,
+}
+
+/// Groups point indices by cell. NaN points are left out (their result is fixed).
+fn group(
+    points: &[Vec2],
+    cell_of: impl Fn(Vec2) -> Option<usize>,
+    cells: usize,
+) -> (Vec<u32>, Vec<Group>) {
+    let key = |p: Vec2| -> usize {
+        if p.x.is_nan() || p.y.is_nan() {
+            cells + 1
+        } else {
+            cell_of(p).unwrap_or(cells)
+        }
+    };
+    let keys: Vec<u32> = points.iter().map(|&p| key(p) as u32).collect();
+    let mut order: Vec<u32> = (0..points.len() as u32).collect();
+    if cells <= points.len().saturating_mul(4) {
+        let mut counts = vec![0u32; cells + 3];
+        for &k in &keys {
+            counts[k as usize + 1] += 1;
+        }
+        for i in 1..counts.len() {
+            counts[i] += counts[i - 1];
+        }
+        for (i, &k) in keys.iter().enumerate() {
+            order[counts[k as usize] as usize] = i as u32;
+            counts[k as usize] += 1;
+        }
+    } else {
+        order.sort_unstable_by_key(|&i| keys[i as usize]);
+    }
+    let mut groups = Vec::new();
+    let mut start = 0;
+    while start < order.len() {
+        let k = keys[order[start] as usize];
+        let mut end = start + 1;
+        while end < order.len() && keys[order[end] as usize] == k {
+            end += 1;
+        }
+        if (k as usize) < cells + 1 {
+            let cell = ((k as usize) < cells).then_some(k as usize);
+            groups.push(Group { cell, start, end });
+        }
+        start = end;
+    }
+    (order, groups)
+}
+
+/// What a lane block starts from before the cell's events.
+enum Start<'a> {
+    Base(&'a CellPlan),
+    Constant(f32, Option<MaterialId>),
+    AirFromBase(&'a CellPlan),
+    AirFromBrick(u32),
+    Brick(u32),
+}
+
+impl<F: Sdf> Terrain<F> {
+    /// The backend of the batch queries (by default [`Backend::best`]).
+    pub fn backend(&self) -> Backend {
+        self.backend
+    }
+
+    /// Chooses the backend of the batch queries; results do not depend on it.
+    pub fn set_backend(&mut self, backend: Backend) -> Result<(), BackendError> {
+        self.backend = backend.check()?;
+        Ok(())
+    }
+
+    /// Whether each grid cell evaluates the base through a tape specialized to the cell
+    /// (on by default). Results do not depend on it; it exists to measure what it saves.
+    pub fn set_specialize(&mut self, on: bool) {
+        if let Some(plans) = &mut self.plans {
+            plans.set_specialize(on);
+        }
+    }
+
+    /// Distances at `points` into `out`, bit-identical to [`Sdf::distance`] at each point.
+    pub fn distances(&self, points: &[Vec2], out: &mut [f32]) -> Result<(), EvalError> {
+        if points.len() != out.len() {
+            return Err(EvalError::LengthMismatch {
+                input: points.len(),
+                output: out.len(),
+            });
+        }
+        if self.plans.is_none() {
+            for (o, &p) in out.iter_mut().zip(points) {
+                *o = self.distance(p);
+            }
+            return Ok(());
+        }
+        let (order, groups) = self.group(points);
+        for (o, p) in out.iter_mut().zip(points) {
+            if p.x.is_nan() || p.y.is_nan() {
+                *o = f32::NAN;
+            }
+        }
+        let k = Distances {
+            t: self,
+            points,
+            order: &order,
+            groups: &groups,
+            out,
+        };
+        simd::run(self.backend, k)?;
+        Ok(())
+    }
+
+    /// Samples at `points` into `out`, bit-identical to [`Sdf::sample`] at each point.
+    pub fn samples(&self, points: &[Vec2], out: &mut [Sample]) -> Result<(), EvalError> {
+        if points.len() != out.len() {
+            return Err(EvalError::LengthMismatch {
+                input: points.len(),
+                output: out.len(),
+            });
+        }
+        if self.plans.is_none() {
+            for (o, &p) in out.iter_mut().zip(points) {
+                *o = self.sample(p);
+            }
+            return Ok(());
+        }
+        let (order, groups) = self.group(points);
+        for (o, p) in out.iter_mut().zip(points) {
+            if p.x.is_nan() || p.y.is_nan() {
+                *o = self.sample(*p);
+            }
+        }
+        let k = Samples {
+            t: self,
+            points,
+            order: &order,
+            groups: &groups,
+            out,
+        };
+        simd::run(self.backend, k)?;
+        Ok(())
+    }
+
+    fn group(&self, points: &[Vec2]) -> (Vec<u32>, Vec<Group>) {
+        group(points, |p| self.grid.cell_index(p), self.grid.cells.len())
+    }
+
+    /// How a group's lanes start (state and base).
+    fn start(&self, cell: Option<usize>, material: bool) -> Start<'_> {
+        let Some(plans) = &self.plans else {
+            unreachable!("batch kernels run only with plans")
+        };
+        let m = self.options.band;
+        let state = cell
+            .and_then(|c| self.grid.cells.get(c))
+            .map_or(CellState::Base, |c| c.state.0);
+        match state {
+            CellState::Base => Start::Base(plans.get(&self.grid, cell)),
+            CellState::Solid(mat) => Start::Constant(-m, Some(mat)),
+            CellState::Air(src) if material => match src {
+                MaterialSource::Base => Start::AirFromBase(plans.get(&self.grid, cell)),
+                MaterialSource::Constant(mat) => Start::Constant(m, Some(mat)),
+                MaterialSource::Brick(id) => Start::AirFromBrick(id),
+            },
+            CellState::Air(_) => Start::Constant(m, None),
+            CellState::Brick(id) => Start::Brick(id),
+        }
+    }
+
+    /// The cell's events in order, as they apply at the current tick.
+    fn cell_events(&self, cell: Option<usize>) -> impl Iterator<Item = &Event> {
+        cell.and_then(|c| self.grid.cells.get(c))
+            .into_iter()
+            .flat_map(|c| c.events.iter())
+            .filter_map(|&i| self.events.get(i as usize))
+    }
+}
+
+/// Gathers up to `nb * WIDTH` points of a group.
+fn gather(points: &[Vec2], idx: &[u32], buf: &mut Vec<Vec2>) {
+    buf.clear();
+    buf.extend(idx.iter().map(|&i| points[i as usize]));
+}
+
+struct Distances<'a, F: Sdf> {
+    t: &'a Terrain<F>,
+    points: &'a [Vec2],
+    order: &'a [u32],
+    groups: &'a [Group],
+    out: &'a mut [f32],
+}
+
+impl<F: Sdf> Kernel for Distances<'_, F> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes>(self, l: L) {
+        let t = self.t;
+        let band = t.options.band;
+        let mut block: Option<Block<L, Fv<L>>> = None;
+        let mut pts = Vec::new();
+        let mut lanes = [0.0f32; 16];
+        let nb = crate::field2d::exec::block_registers::<L>();
+        let step = nb * L::WIDTH;
+        for g in self.groups {
+            let start = t.start(g.cell, false);
+            for idx in self.order[g.start..g.end].chunks(step) {
+                gather(self.points, idx, &mut pts);
+                let mut ds: Vec<Fv<L>> = Vec::with_capacity(nb);
+                match &start {
+                    Start::Base(plan) => {
+                        let b = block.get_or_insert_with(|| Block::new(l, &plan.value));
+                        b.run(l, &plan.value, &pts);
+                        for r in 0..nb {
+                            ds.push(clamp(l, b.get(plan.value.value, r), -band, band));
+                        }
+                    }
+                    Start::Constant(v, _) => ds.resize(nb, Fv::cst(l, *v)),
+                    Start::AirFromBase(_) | Start::AirFromBrick(_) => {
+                        ds.resize(nb, Fv::cst(l, band))
+                    }
+                    Start::Brick(id) => {
+                        for r in 0..nb {
+                            let p = lane_point::<L, Fv<L>>(l, &pts, r);
+                            let (d, _) = brick(l, t, *id, g.cell, p, false);
+                            ds.push(d);
+                        }
+                    }
+                }
+                for (r, d) in ds.iter_mut().enumerate() {
+                    let p = lane_point::<L, Fv<L>>(l, &pts, r);
+                    let mut mat = l.splat_i(0);
+                    for e in t.cell_events(g.cell) {
+                        (*d, mat) = apply_event(l, *d, mat, p, e, t.tick, band);
+                    }
+                    l.store(d.0, &mut lanes);
+                    for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
+                        self.out[i as usize] = lanes[k - r * L::WIDTH];
+                    }
+                }
+            }
+        }
+    }
+}
+
+struct Samples<'a, F: Sdf> {
+    t: &'a Terrain<F>,
+    points: &'a [Vec2],
+    order: &'a [u32],
+    groups: &'a [Group],
+    out: &'a mut [Sample],
+}
+
+impl<F: Sdf> Kernel for Samples<'_, F> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes>(self, l: L) {
+        let t = self.t;
+        let band = t.options.band;
+        let mut block: Option<Block<L, Dv<L>>> = None;
+        let mut pts = Vec::new();
+        let (mut v, mut gx, mut gy) = ([0.0f32; 16], [0.0f32; 16], [0.0f32; 16]);
+        let mut mats = [0i32; 16];
+        let mut tape_mats = [0 as MaterialId; 16];
+        let nb = crate::field2d::exec::block_registers::<L>();
+        let step = nb * L::WIDTH;
+        for g in self.groups {
+            let start = t.start(g.cell, true);
+            for idx in self.order[g.start..g.end].chunks(step) {
+                gather(self.points, idx, &mut pts);
+                let mut ds: Vec<(Dv<L>, L::I)> = Vec::with_capacity(nb);
+                match &start {
+                    Start::Base(plan) | Start::AirFromBase(plan) => {
+                        let tape = &plan.material;
+                        let b = block.get_or_insert_with(|| Block::new(l, tape));
+                        b.run(l, tape, &pts);
+                        for r in 0..nb {
+                            b.materials(l, tape, r, &mut tape_mats);
+                            let m = tape_mats.map(i32::from);
+                            let mat = l.load_i(&m);
+                            let d = match start {
+                                Start::Base(_) => clamp(l, b.get(tape.value, r), -band, band),
+                                _ => Dv::cst(l, band),
+                            };
+                            ds.push((d, mat));
+                        }
+                    }
+                    Start::Constant(v, m) => {
+                        let mat = l.splat_i(i32::from(m.unwrap_or(0)));
+                        ds.resize(nb, (Dv::cst(l, *v), mat));
+                    }
+                    Start::AirFromBrick(id) | Start::Brick(id) => {
+                        for r in 0..nb {
+                            let p = lane_point::<L, Dv<L>>(l, &pts, r);
+                            let (d, m) = brick(l, t, *id, g.cell, p, true);
+                            let d = match start {
+                                Start::Brick(_) => d,
+                                _ => Dv::cst(l, band),
+                            };
+                            ds.push((d, m));
+                        }
+                    }
+                }
+                for (r, (d, mat)) in ds.iter_mut().enumerate() {
+                    let p = lane_point::<L, Dv<L>>(l, &pts, r);
+                    for e in t.cell_events(g.cell) {
+                        (*d, *mat) = apply_event(l, *d, *mat, p, e, t.tick, band);
+                    }
+                    l.store(d.v, &mut v);
+                    l.store(d.dx, &mut gx);
+                    l.store(d.dy, &mut gy);
+                    l.store_i(*mat, &mut mats);
+                    for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
+                        let k = k - r * L::WIDTH;
+                        self.out[i as usize] = Sample {
+                            distance: v[k],
+                            gradient: Vec2::new(gx[k], gy[k]),
+                            material: mats[k] as MaterialId,
+                        };
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Lane register `r` of the gathered points as a point of numbers (padding repeats the
+/// last point).
+#[inline(always)]
+fn lane_point<L: Lanes, V: Val<L>>(l: L, pts: &[Vec2], r: usize) -> P2<V> {
+    let (mut x, mut y) = ([0.0f32; 16], [0.0f32; 16]);
+    let last = pts.len().saturating_sub(1);
+    for k in 0..L::WIDTH {
+        let p = pts
+            .get(r * L::WIDTH + k)
+            .or(pts.get(last))
+            .copied()
+            .unwrap_or(Vec2::ZERO);
+        x[k] = p.x;
+        y[k] = p.y;
+    }
+    P2::new(V::px(l, l.load(&x)), V::py(l, l.load(&y)))
+}
+
+/// `terrain::smin` (`max = false`) and `terrain::smax` (`max = true`).
+#[inline(always)]
+fn smooth<L: Lanes, V: Val<L>>(l: L, a: V, b: V, k: f32, max: bool) -> V {
+    let m = if max { a.max(l, b) } else { a.min(l, b) };
+    let h = V::cst(l, k)
+        .sub(l, a.sub(l, b).abs(l))
+        .max(l, V::cst(l, 0.0))
+        .div(l, V::cst(l, k));
+    let t = h.mul(l, h).scale(l, k).scale(l, 0.25);
+    let blended = if max { m.add(l, t) } else { m.sub(l, t) };
+    V::select(l, l.gt(h.v(), l.splat(0.0)), blended, m)
+}
+
+/// `terrain::apply_event` on lanes.
+#[inline(always)]
+fn apply_event<L: Lanes, V: Val<L>>(
+    l: L,
+    d: V,
+    mat: L::I,
+    p: P2<V>,
+    e: &Event,
+    tick: u32,
+    band: f32,
+) -> (V, L::I) {
+    let Some(r) = e.radius_at(tick) else {
+        return (d, mat);
+    };
+    let c = p.minus(l, e.center_f32()).length(l).offset(l, -r);
+    let k = e.rim_f32();
+    match e.kind {
+        EventKind::Carve => {
+            let nc = c.neg(l);
+            let v = if k > 0.0 {
+                smooth(l, d, nc, k, true)
+            } else {
+                d.max(l, nc)
+            };
+            (clamp(l, v, -band, band), mat)
+        }
+        EventKind::Fill => {
+            let wins = l.not(l.lt(d.v(), c.v()));
+            let v = if k > 0.0 {
+                smooth(l, d, c, k, false)
+            } else {
+                d.min(l, c)
+            };
+            let mat = l.select_i(wins, l.splat_i(i32::from(e.material)), mat);
+            (clamp(l, v, -band, band), mat)
+        }
+    }
+}
+
+/// `Grid::interpolate` on lanes: the brick's bilinear value (and nearest material).
+#[inline(always)]
+fn brick<L: Lanes, V: Val<L>, F: Sdf>(
+    l: L,
+    t: &Terrain<F>,
+    id: u32,
+    cell: Option<usize>,
+    p: P2<V>,
+    material: bool,
+) -> (V, L::I) {
+    let grid = &t.grid;
+    let (Some(b), Some(cell)) = (grid.brick(id), cell) else {
+        return (V::cst(l, f32::NAN), l.splat_i(0));
+    };
+    let n = grid.brick_resolution();
+    let nf = n as f32;
+    let m = grid.cell_min_f32(cell);
+    let h = V::cst(l, grid.brick_spacing());
+    let u = clamp(l, p.x.offset(l, -m.x).div(l, h), 0.0, nf);
+    let v = clamp(l, p.y.offset(l, -m.y).div(l, h), 0.0, nf);
+    let top_index = l.splat_i(n as i32 - 1);
+    let floor_in = |x: L::F| {
+        let i = l.to_i32(x);
+        l.select_i(l.gt_i(i, top_index), top_index, i)
+    };
+    let (i, j) = (floor_in(u.v()), floor_in(v.v()));
+    let fu = u.offset_v(l, l.neg(l.to_f32(i)));
+    let fv = v.offset_v(l, l.neg(l.to_f32(j)));
+    let (mut ii, mut jj) = ([0i32; 16], [0i32; 16]);
+    l.store_i(i, &mut ii);
+    l.store_i(j, &mut jj);
+    let row = (n + 1) as usize;
+    let val = |i: i32, j: i32| {
+        b.values
+            .get(j as usize * row + i as usize)
+            .copied()
+            .unwrap_or(0.0)
+    };
+    let (mut v00, mut v10, mut v01, mut v11) = ([0.0; 16], [0.0; 16], [0.0; 16], [0.0; 16]);
+    for k in 0..L::WIDTH {
+        let (i, j) = (ii[k], jj[k]);
+        (v00[k], v10[k], v01[k], v11[k]) =
+            (val(i, j), val(i + 1, j), val(i, j + 1), val(i + 1, j + 1));
+    }
+    let (v00, v10, v01, v11) = (l.load(&v00), l.load(&v10), l.load(&v01), l.load(&v11));
+    let bottom = fu.scale_v(l, l.sub(v10, v00)).offset_v(l, v00);
+    let top = fu.scale_v(l, l.sub(v11, v01)).offset_v(l, v01);
+    let d = top.sub(l, bottom).mul(l, fv).add(l, bottom);
+    if !material {
+        return (d, l.splat_i(0));
+    }
+    let top_mat = l.splat_i(n as i32);
+    let nearest = |x: L::F| {
+        let i = l.to_i32(l.add(x, l.splat(0.5)));
+        l.select_i(l.gt_i(i, top_mat), top_mat, i)
+    };
+    let (mi, mj) = (nearest(u.v()), nearest(v.v()));
+    l.store_i(mi, &mut ii);
+    l.store_i(mj, &mut jj);
+    let mut mats = [0i32; 16];
+    for k in 0..L::WIDTH {
+        let at = jj[k] as usize * row + ii[k] as usize;
+        mats[k] = i32::from(b.materials.get(at).copied().unwrap_or(0));
+    }
+    (d, l.load_i(&mats))
+}
