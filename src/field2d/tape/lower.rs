@@ -100,7 +100,6 @@ impl Builder {
             Op::Add => c(i.a)? + c(i.b)?,
             Op::Sub => c(i.a)? - c(i.b)?,
             Op::Mul => c(i.a)? * c(i.b)?,
-            Op::Div => c(i.a)? / c(i.b)?,
             Op::Neg => -c(i.a)?,
             Op::Abs => c(i.a)?.abs(),
             Op::Sqrt => c(i.a)?.sqrt(),

@@ -20,6 +20,7 @@
 //!    instruction has an immediate form, and values get registers by a linear scan that
 //!    reuses a register as soon as its value's last use has passed.
 
+pub mod fuse;
 pub mod interval;
 pub mod lower;
 pub mod regalloc;
@@ -53,8 +54,6 @@ pub enum Op {
     Sub,
     /// `a * b`.
     Mul,
-    /// `a / b`.
-    Div,
     /// `-a`.
     Neg,
     /// `|a|`.
@@ -81,10 +80,6 @@ pub enum Op {
     RSubImm,
     /// `a * C`.
     MulImm,
-    /// `a / C`.
-    DivImm,
-    /// `C / a`.
-    RDivImm,
     /// `if a < C { a } else { C }`.
     MinImm,
     /// `if a > C { a } else { C }`.
@@ -142,6 +137,58 @@ pub enum Op {
     MinNeg,
 }
 
+impl Op {
+    /// Every instruction code.
+    pub const ALL: [Op; 46] = [
+        Op::X,
+        Op::Y,
+        Op::Const,
+        Op::Add,
+        Op::Sub,
+        Op::Mul,
+        Op::Neg,
+        Op::Abs,
+        Op::Sqrt,
+        Op::Square,
+        Op::Offset,
+        Op::Scale,
+        Op::Min,
+        Op::Max,
+        Op::ShiftSub,
+        Op::AddImm,
+        Op::SubImm,
+        Op::RSubImm,
+        Op::MulImm,
+        Op::MinImm,
+        Op::MaxImm,
+        Op::SmoothMin,
+        Op::SmoothMax,
+        Op::Circle,
+        Op::Box,
+        Op::OrientedBox,
+        Op::Capsule,
+        Op::Polygon,
+        Op::Ellipse,
+        Op::Ring,
+        Op::Arc,
+        Op::HalfPlane,
+        Op::Height,
+        Op::Noise,
+        Op::Wave,
+        Op::RepeatIndex,
+        Op::RepeatOffset,
+        Op::RepeatActive,
+        Op::Lt,
+        Op::And,
+        Op::Select,
+        Op::MatConst,
+        Op::MatSelect,
+        Op::Hypot,
+        Op::MaxNeg,
+        Op::MinNeg,
+    ];
+}
+
 /// What kind of value an instruction produces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
@@ -177,8 +224,6 @@ impl Op {
             | Op::SubImm
             | Op::RSubImm
             | Op::MulImm
-            | Op::DivImm
-            | Op::RDivImm
             | Op::MinImm
             | Op::MaxImm
             | Op::Wave

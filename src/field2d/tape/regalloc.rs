@@ -15,8 +15,6 @@ fn immediate_form(op: Op, constant_first: bool) -> Option<Op> {
         (Op::Mul, _) => Op::MulImm,
         (Op::Sub, false) => Op::SubImm,
         (Op::Sub, true) => Op::RSubImm,
-        (Op::Div, false) => Op::DivImm,
-        (Op::Div, true) => Op::RDivImm,
         (Op::Min, false) => Op::MinImm,
         (Op::Max, false) => Op::MaxImm,
         _ => return None,

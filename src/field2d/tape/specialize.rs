@@ -144,7 +144,10 @@ impl Specializer<'_> {
             }
             Op::SmoothMin | Op::SmoothMax => {
                 // hk = k - |a - b| <= 0 everywhere: the result is the plain min / max.
-                let hk = Range::offset(Range::scale(Range::abs(Range::difference(ra, rb)), -1.0), imm);
+                let hk = Range::offset(
+                    Range::scale(Range::abs(Range::difference(ra, rb)), -1.0),
+                    imm,
+                );
                 if !hk.nan && hk.hi <= 0.0 {
                     let op = if ins.op == Op::SmoothMin {
                         Op::Min
@@ -209,7 +212,6 @@ impl Specializer<'_> {
             Op::Add => Range::sum(ra, rb),
             Op::Sub => Range::difference(ra, rb),
             Op::Mul => Range::product(ra, rb),
-            Op::Div => Range::quotient(ra, rb),
             Op::Neg => Range::negated(ra),
             Op::Abs => Range::abs(ra),
             Op::Sqrt => Range::sqrt(ra),
@@ -225,8 +227,6 @@ impl Specializer<'_> {
             Op::SubImm => Range::offset(ra, -imm),
             Op::RSubImm => Range::difference(Range::point(imm), ra),
             Op::MulImm => Range::scale(ra, imm),
-            Op::DivImm => Range::quotient(ra, Range::point(imm)),
-            Op::RDivImm => Range::quotient(Range::point(imm), ra),
             Op::MinImm => Range::min(ra, Range::point(imm)),
             Op::MaxImm => Range::max(ra, Range::point(imm)),
             Op::Hypot => Range::sqrt(Range::sum(Range::square(ra), Range::square(rb))),

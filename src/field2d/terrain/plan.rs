@@ -25,13 +25,9 @@ pub(crate) struct CellPlan {
 
 impl CellPlan {
     fn new(program: &Program, region: Option<(Vec2, Vec2)>) -> CellPlan {
-        let specialized;
         let program = match region {
-            Some((min, max)) => {
-                specialized = program.specialize(min, max);
-                &specialized
-            }
-            None => program,
+            Some((min, max)) => program.specialize(min, max).fuse(),
+            None => program.fuse(),
         };
         CellPlan {
             value: program.tape(Outputs::Value),
