@@ -616,8 +616,8 @@ fn terrain_with_bricks_matches_across_paths() {
     let b = level.bounds();
     let mut t = craterfield::field2d::Terrain::new(
         level.graph().clone(),
-        Vec2::from(b.min),
-        Vec2::from(b.max),
+        b.min,
+        b.max,
         o,
     )
     .unwrap();
