@@ -614,13 +614,7 @@ fn terrain_with_bricks_matches_across_paths() {
         ..level.terrain_options()
     };
     let b = level.bounds();
-    let mut t = craterfield::field2d::Terrain::new(
-        level.graph().clone(),
-        b.min,
-        b.max,
-        o,
-    )
-    .unwrap();
+    let mut t = craterfield::field2d::Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
     let mut r = Rng(0x5eed_0004);
     for i in 0..3000 {
         let c = Vec2::new(r.f(1000.0, 1600.0), r.f(300.0, 800.0));
