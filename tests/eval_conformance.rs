@@ -668,3 +668,45 @@ fn batch_errors_are_reported_not_panics() {
         .unwrap_err();
     assert!(e.to_string().contains("not available"), "{e}");
 }
+
+/// The specialized prospero render gives the brute force's image, pixel for pixel, with
+/// any tiling and thread count, and skips most of the work.
+#[test]
+fn prospero_specialized_image_equals_brute_force() {
+    use craterfield::field2d::tape::image::{ImageOptions, inside_image};
+    let g = craterfield::field2d::import::graph_from_vm(&prospero_text()).unwrap();
+    let program = g.program();
+    let brute_opts = ImageOptions {
+        size: 256,
+        tiles: vec![],
+        backend: Backend::widest(),
+        ..ImageOptions::default()
+    };
+    let (brute, _) = inside_image(&program, &brute_opts).unwrap();
+    let inside = brute.iter().filter(|b| **b).count();
+    assert!(
+        inside > 1000 && inside < 256 * 256 / 2,
+        "{inside} inside pixels"
+    );
+    for (tiles, threads) in [(vec![64, 16, 4], 1), (vec![32, 8], 2), (vec![16], 1)] {
+        let o = ImageOptions {
+            tiles: tiles.clone(),
+            threads,
+            ..brute_opts.clone()
+        };
+        let (img, stats) = inside_image(&program, &o).unwrap();
+        let diff = img.iter().zip(&brute).filter(|(a, b)| a != b).count();
+        assert_eq!(diff, 0, "tiles {tiles:?}: {diff} pixels differ");
+        assert!(stats.filled_tiles > 0 && stats.evaluated_pixels < 256 * 256);
+    }
+    let bad = ImageOptions {
+        tiles: vec![100],
+        ..brute_opts
+    };
+    assert!(
+        inside_image(&program, &bad)
+            .unwrap_err()
+            .to_string()
+            .contains("does not divide")
+    );
+}

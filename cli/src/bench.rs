@@ -133,7 +133,7 @@ pub fn field(json: bool, points: usize) -> Result<ExitCode, String> {
 }
 
 /// The default level with `count` barrage events; returns the per-insert times (us).
-fn build(level: &Level, count: usize) -> Result<(Terrain<Graph>, Vec<f64>), String> {
+pub fn build(level: &Level, count: usize) -> Result<(Terrain<Graph>, Vec<f64>), String> {
     let mut terrain = level.terrain().map_err(|e| e.to_string())?;
     let mut rng = Rng::new(2024);
     let mut times = Vec::with_capacity(count);

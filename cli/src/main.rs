@@ -2,7 +2,10 @@
 
 mod barrage;
 mod bench;
+mod bench_eval;
 mod demo;
+#[cfg(feature = "peers")]
+mod peers;
 mod rng;
 
 use std::path::PathBuf;
@@ -70,6 +73,18 @@ enum BenchCommand {
         #[arg(long, default_value_t = 400_000)]
         points: usize,
     },
+    /// The tape evaluators on every backend (and fidget with the feature `peers`).
+    Eval {
+        /// Print one JSON object instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Random points of the `default` workloads.
+        #[arg(long, default_value_t = 1_000_000)]
+        points: usize,
+        /// The prospero expression (default: ../shared/data/prospero.vm).
+        #[arg(long)]
+        prospero: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -92,6 +107,14 @@ fn main() -> ExitCode {
         Command::Bench {
             command: BenchCommand::Field { json, points },
         } => bench::field(json, points),
+        Command::Bench {
+            command:
+                BenchCommand::Eval {
+                    json,
+                    points,
+                    prospero,
+                },
+        } => bench_eval::eval(json, points, prospero),
     };
     match result {
         Ok(code) => code,

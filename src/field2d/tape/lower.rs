@@ -31,6 +31,9 @@ pub(crate) struct Builder {
     param_blocks: HashMap<Vec<u32>, u32>,
     /// Parameters shared with the program being rewritten (instead of `params`).
     shared: Option<Arc<Vec<u32>>>,
+    /// Skip the common-subexpression table: rewriting an already shared program finds
+    /// few new duplicates, and the hashing dominates its cost.
+    no_cse: bool,
 }
 
 impl Builder {
@@ -38,6 +41,7 @@ impl Builder {
     pub(crate) fn rewriting(params: Arc<Vec<u32>>) -> Builder {
         Builder {
             shared: Some(params),
+            no_cse: true,
             ..Builder::default()
         }
     }
@@ -53,7 +57,12 @@ impl Builder {
             c: if n > 2 { c } else { 0 },
             imm,
         };
-        if let Some(&id) = self.cse.get(&key) {
+        let shared = if self.no_cse {
+            None
+        } else {
+            self.cse.get(&key).copied()
+        };
+        if let Some(id) = shared {
             return id;
         }
         if let Some(v) = self.fold(&key) {
@@ -64,7 +73,9 @@ impl Builder {
         }
         let id = self.ops.len() as u32;
         self.ops.push(Instr { dst: id, ..key });
-        self.cse.insert(key, id);
+        if !self.no_cse {
+            self.cse.insert(key, id);
+        }
         id
     }
 

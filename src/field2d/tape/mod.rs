@@ -21,6 +21,7 @@
 //!    reuses a register as soon as its value's last use has passed.
 
 pub mod fuse;
+pub mod image;
 pub mod interval;
 pub mod lower;
 pub mod regalloc;

@@ -49,13 +49,12 @@ impl Program {
     /// This program specialized to the box `[min, max]` (see the module doc): for every
     /// point of the box it computes the same bits as `self`, in distance and dual mode.
     pub fn specialize(&self, min: Vec2, max: Vec2) -> Program {
-        let mut s = Specializer {
-            p: self,
-            b: Builder::rewriting(self.params.clone()),
-            new: vec![u32::MAX; self.ops.len()],
-            bound: vec![Bound::Float(Range::ALL); self.ops.len()],
-            region: (Range::new(min.x, max.x), Range::new(min.y, max.y)),
-        };
+        self.specialize_with_bound(min, max).0
+    }
+
+    /// [`Program::specialize`] and the bound of the value over the box, in one pass.
+    pub fn specialize_with_bound(&self, min: Vec2, max: Vec2) -> (Program, Range) {
+        let mut s = Specializer::new(self, min, max, true);
         for (i, ins) in self.ops.iter().enumerate() {
             s.step(i, ins);
         }
@@ -64,18 +63,13 @@ impl Program {
             MatOut::Const(c) => Mat::Const(c),
             MatOut::Value(m) => s.mat(s.new[m as usize]),
         };
-        s.b.finish(value, material)
+        let bound = s.bound[self.value as usize].range();
+        (s.b.finish(value, material), bound)
     }
 
     /// The bound of the program's value over the box `[min, max]`.
     pub fn bound(&self, min: Vec2, max: Vec2) -> Range {
-        let mut s = Specializer {
-            p: self,
-            b: Builder::rewriting(self.params.clone()),
-            new: vec![u32::MAX; self.ops.len()],
-            bound: vec![Bound::Float(Range::ALL); self.ops.len()],
-            region: (Range::new(min.x, max.x), Range::new(min.y, max.y)),
-        };
+        let mut s = Specializer::new(self, min, max, false);
         for (i, ins) in self.ops.iter().enumerate() {
             s.step(i, ins);
         }
@@ -85,6 +79,8 @@ impl Program {
 
 struct Specializer<'a> {
     p: &'a Program,
+    /// Whether to rebuild the program (or only bound it).
+    rebuild: bool,
     b: Builder,
     /// New id of each old value (`u32::MAX` for a mask decided everywhere).
     new: Vec<u32>,
@@ -92,7 +88,18 @@ struct Specializer<'a> {
     region: (Range, Range),
 }
 
-impl Specializer<'_> {
+impl<'a> Specializer<'a> {
+    fn new(p: &'a Program, min: Vec2, max: Vec2, rebuild: bool) -> Specializer<'a> {
+        Specializer {
+            p,
+            rebuild,
+            b: Builder::rewriting(p.params.clone()),
+            new: vec![u32::MAX; p.ops.len()],
+            bound: vec![Bound::Float(Range::ALL); p.ops.len()],
+            region: (Range::new(min.x, max.x), Range::new(min.y, max.y)),
+        }
+    }
+
     fn mat(&mut self, id: u32) -> Mat {
         match self.b.ops.get(id as usize) {
             Some(i) if i.op == Op::MatConst => Mat::Const(i.imm as u16),
@@ -185,6 +192,9 @@ impl Specializer<'_> {
         if matches!(bound, Bound::Mask(Tri::True | Tri::False)) {
             // A decided mask: its users resolve it; it is never materialized.
             return self.set(i, u32::MAX, bound);
+        }
+        if !self.rebuild {
+            return self.set(i, 0, bound);
         }
         let mut n = *ins;
         n.map_operands(|o| self.new[o as usize]);
