@@ -88,6 +88,9 @@ impl ImageOptions {
             )));
         }
         let mut prev = self.size;
+        // `%` rather than `is_multiple_of`: the deterministic core also builds with the
+        // older toolchain of the aarch64 cross tests.
+        #[allow(clippy::manual_is_multiple_of)]
         for &t in &self.tiles {
             if t == 0 || prev % t != 0 {
                 return Err(ImageError::Options(format!(
