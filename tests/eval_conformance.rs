@@ -406,6 +406,30 @@ fn random_graphs_match_the_reference_on_every_backend() {
     }
     let (pg, pts) = prospero_subset();
     check_graph(&pg, &pg.program(), &pts, &mut seen, "prospero");
+    // Every superinstruction, from expressions made for it.
+    let c = |v: f32| Box::new(Node::Const(v));
+    let (x, y) = (|| Box::new(Node::X), || Box::new(Node::Y));
+    for (combine, name) in [(true, "max"), (false, "min")] {
+        let operands = vec![
+            Node::Add(y(), c(3.5)),
+            Node::Add(c(-2.0), y()),
+            Node::Sub(y(), c(1.25)),
+            Node::Sub(c(4.0), y()),
+            Node::Sub(y(), x()),
+            Node::Neg(y()),
+        ];
+        for operand in operands {
+            let nodes = vec![Node::X, operand, Node::Square(y()), Node::Y];
+            let node = if combine {
+                Node::Intersection(nodes)
+            } else {
+                Node::Union(nodes)
+            };
+            let g = Graph::compile(&node, &Default::default()).unwrap();
+            let pts = points_around(&mut r, 20.0, 200);
+            check_graph(&g, &g.program(), &pts, &mut seen, name);
+        }
+    }
     let missing: Vec<Op> = Op::ALL
         .iter()
         .copied()

@@ -55,7 +55,44 @@ fn timed(f: impl FnOnce() -> Result<(), String>) -> Result<f64, String> {
     Ok(t.elapsed().as_secs_f64() * 1e3)
 }
 
-pub fn eval(json: bool, points: usize, prospero: Option<PathBuf>) -> Result<ExitCode, String> {
+/// What to measure.
+pub struct Options {
+    pub json: bool,
+    pub points: usize,
+    pub prospero: Option<PathBuf>,
+    pub only: Option<String>,
+    pub backends: Vec<String>,
+}
+
+/// The backends to measure: those asked for (all available by default).
+fn backends(names: &[String]) -> Result<Vec<Backend>, String> {
+    if names.is_empty() {
+        return Ok(Backend::available());
+    }
+    names
+        .iter()
+        .map(|n| {
+            n.parse::<Backend>()
+                .and_then(Backend::check)
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+}
+
+pub fn eval(o: Options) -> Result<ExitCode, String> {
+    let Options {
+        json,
+        points,
+        prospero,
+        only,
+        backends: names,
+    } = o;
+    let list = backends(&names)?;
+    // A workload runs when the filter names it, a prefix of it, or a group it belongs to.
+    let wanted = |w: &str| {
+        only.as_deref()
+            .is_none_or(|p| w.starts_with(p) || p.starts_with(w))
+    };
     let points = points.clamp(1_000, 20_000_000);
     let mut rows = Vec::new();
     let mut notes = Vec::new();
@@ -66,14 +103,29 @@ pub fn eval(json: bool, points: usize, prospero: Option<PathBuf>) -> Result<Exit
         .map(|_| Vec2::new(rng.range(b.min.x, b.max.x), rng.range(b.min.y, b.max.y)))
         .collect();
 
-    let mut terrain = level.terrain().map_err(|e| e.to_string())?;
-    terrain_rows(&mut terrain, &pts, "default", &mut rows, &mut notes)?;
-    let (mut terrain, _) = crate::bench::build(&level, 10_000)?;
-    terrain_rows(&mut terrain, &pts, "default-10k", &mut rows, &mut notes)?;
+    if wanted("default") {
+        let mut terrain = level.terrain().map_err(|e| e.to_string())?;
+        terrain_rows(&mut terrain, &pts, "default", &list, &mut rows, &mut notes)?;
+    }
+    if wanted("default-10k") {
+        let (mut terrain, _) = crate::bench::build(&level, 10_000)?;
+        terrain_rows(
+            &mut terrain,
+            &pts,
+            "default-10k",
+            &list,
+            &mut rows,
+            &mut notes,
+        )?;
+    }
 
     let path = prospero.unwrap_or_else(|| PathBuf::from("../shared/data/prospero.vm"));
     match std::fs::read_to_string(&path) {
-        Ok(text) => prospero_rows(&text, &path, &mut rows, &mut notes)?,
+        _ if !wanted("prospero") => {}
+        Ok(text) => {
+            let parts = (wanted("prospero-brute"), wanted("prospero-specialized"));
+            prospero_rows(&text, &path, &list, parts, &mut rows, &mut notes)?
+        }
         Err(e) => notes.push(format!(
             "prospero workloads skipped: cannot read {} ({e}); pass --prospero FILE",
             path.display()
@@ -106,6 +158,7 @@ fn terrain_rows(
     terrain: &mut Terrain<Graph>,
     pts: &[Vec2],
     workload: &str,
+    list: &[Backend],
     rows: &mut Vec<Row>,
     notes: &mut Vec<String>,
 ) -> Result<(), String> {
@@ -121,7 +174,7 @@ fn terrain_rows(
     // Build every cell's tapes once, outside the timings.
     terrain.distances(pts, &mut d).map_err(|e| e.to_string())?;
     let mut first: Option<Vec<f32>> = None;
-    for backend in Backend::available() {
+    for &backend in list {
         terrain.set_backend(backend).map_err(|e| e.to_string())?;
         let ms = best_ms(|| timed(|| terrain.distances(pts, &mut d).map_err(|e| e.to_string())))?;
         rows.push(row(workload, backend.name(), 1, ms, pts.len()));
@@ -175,6 +228,8 @@ fn terrain_rows(
 fn prospero_rows(
     text: &str,
     path: &Path,
+    list: &[Backend],
+    (do_brute, do_spec): (bool, bool),
     rows: &mut Vec<Row>,
     notes: &mut Vec<String>,
 ) -> Result<(), String> {
@@ -196,7 +251,7 @@ fn prospero_rows(
         plain.len(),
         fused.registers()
     ));
-    for backend in Backend::available() {
+    for &backend in list.iter().filter(|_| do_brute) {
         let o = ImageOptions {
             backend,
             ..brute.clone()
@@ -211,7 +266,7 @@ fn prospero_rows(
         check.check(&format!("prospero-brute {backend}"), &img)?;
         rows.push(row("prospero-brute", backend.name(), 1, ms, pixels));
     }
-    for backend in Backend::available() {
+    for &backend in list.iter().filter(|_| do_spec) {
         for threads in [1, 2] {
             let o = ImageOptions {
                 backend,

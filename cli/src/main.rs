@@ -84,6 +84,12 @@ enum BenchCommand {
         /// The prospero expression (default: ../shared/data/prospero.vm).
         #[arg(long)]
         prospero: Option<PathBuf>,
+        /// Only workloads whose name starts with this (e.g. `prospero`).
+        #[arg(long)]
+        only: Option<String>,
+        /// Only these backends, comma-separated (e.g. `avx2,scalar`).
+        #[arg(long, value_delimiter = ',')]
+        backends: Vec<String>,
     },
 }
 
@@ -113,8 +119,16 @@ fn main() -> ExitCode {
                     json,
                     points,
                     prospero,
+                    only,
+                    backends,
                 },
-        } => bench_eval::eval(json, points, prospero),
+        } => bench_eval::eval(bench_eval::Options {
+            json,
+            points,
+            prospero,
+            only,
+            backends,
+        }),
     };
     match result {
         Ok(code) => code,

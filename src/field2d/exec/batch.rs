@@ -2,7 +2,7 @@
 
 use glam::Vec2;
 
-use super::{Dv, Fv, Val, block_registers, load_points, run_tape};
+use super::{Dv, Fv, Val, load_points, run_tape};
 use crate::field2d::sdf::{MaterialId, Sample};
 use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
 use crate::field2d::tape::{MatOut, Tape};
@@ -33,40 +33,36 @@ fn check(input: usize, output: usize) -> Result<(), EvalError> {
 }
 
 /// The per-backend scratch of a block: coordinates and registers.
-pub(crate) struct Block<L: Lanes, V> {
-    pub nb: usize,
-    pub xs: Vec<L::F>,
-    pub ys: Vec<L::F>,
-    pub regs: Vec<V>,
+pub(crate) struct Block<L: Lanes, V, const NB: usize> {
+    pub xs: [L::F; NB],
+    pub ys: [L::F; NB],
+    pub regs: Vec<[V; NB]>,
 }
 
-impl<L: Lanes, V: Val<L>> Block<L, V> {
+impl<L: Lanes, V: Val<L>, const NB: usize> Block<L, V, NB> {
     #[inline(always)]
     pub fn new(l: L, tape: &Tape) -> Self {
-        let nb = block_registers::<L>();
         Block {
-            nb,
-            xs: Vec::with_capacity(nb),
-            ys: Vec::with_capacity(nb),
-            regs: vec![V::cst(l, 0.0); tape.registers() * nb],
+            xs: [l.splat(0.0); NB],
+            ys: [l.splat(0.0); NB],
+            regs: vec![[V::cst(l, 0.0); NB]; tape.registers()],
         }
     }
 
-    /// Runs the tape on up to `nb * WIDTH` points.
+    /// Runs the tape on up to `NB * WIDTH` points.
     #[inline(always)]
     pub fn run(&mut self, l: L, tape: &Tape, points: &[Vec2]) {
-        let need = tape.registers() * self.nb;
-        if self.regs.len() < need {
-            self.regs.resize(need, V::cst(l, 0.0));
+        if self.regs.len() < tape.registers() {
+            self.regs.resize(tape.registers(), [V::cst(l, 0.0); NB]);
         }
-        load_points(l, points, &mut self.xs, &mut self.ys, self.nb);
+        load_points(l, points, &mut self.xs, &mut self.ys);
         run_tape(l, tape, &mut self.regs, &self.xs, &self.ys);
     }
 
     /// The value register `reg`'s lane register `r`.
     #[inline(always)]
     pub fn get(&self, reg: u32, r: usize) -> V {
-        self.regs[reg as usize * self.nb + r]
+        self.regs[reg as usize][r]
     }
 
     /// Materials of lane register `r` (`out` gets `WIDTH` entries).
@@ -94,9 +90,9 @@ struct Distances<'a> {
 impl Kernel for Distances<'_> {
     type Output = ();
     #[inline(always)]
-    fn run<L: Lanes>(self, l: L) {
-        let mut block = Block::<L, Fv<L>>::new(l, self.tape);
-        let step = block.nb * L::WIDTH;
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
+        let mut block = Block::<L, Fv<L>, NB>::new(l, self.tape);
+        let step = NB * L::WIDTH;
         let mut lanes = [0.0f32; 16];
         for (pts, out) in self.points.chunks(step).zip(self.out.chunks_mut(step)) {
             block.run(l, self.tape, pts);
@@ -117,9 +113,9 @@ struct Samples<'a> {
 impl Kernel for Samples<'_> {
     type Output = ();
     #[inline(always)]
-    fn run<L: Lanes>(self, l: L) {
-        let mut block = Block::<L, Dv<L>>::new(l, self.tape);
-        let step = block.nb * L::WIDTH;
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
+        let mut block = Block::<L, Dv<L>, NB>::new(l, self.tape);
+        let step = NB * L::WIDTH;
         let (mut v, mut gx, mut gy) = ([0.0f32; 16], [0.0f32; 16], [0.0f32; 16]);
         let mut mats = [0; 16];
         for (pts, out) in self.points.chunks(step).zip(self.out.chunks_mut(step)) {

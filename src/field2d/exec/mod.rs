@@ -18,59 +18,62 @@ pub(crate) use self::value::{Dv, Fv, P2, Val};
 use crate::field2d::simd::Lanes;
 use crate::field2d::tape::{Op, Tape};
 
-/// Runs `tape` over one block: `xs`, `ys` hold `nb` lane registers of coordinates, `regs`
-/// at least `tape.registers() * nb` values. Results stay in the registers.
+/// Runs `tape` over one block of `NB` lane registers of points: `regs` holds at least
+/// `tape.registers()` registers. Results stay in the registers.
 #[inline(always)]
-pub(crate) fn run_tape<L: Lanes, V: Val<L>>(
+pub(crate) fn run_tape<L: Lanes, V: Val<L>, const NB: usize>(
     l: L,
     tape: &Tape,
-    regs: &mut [V],
-    xs: &[L::F],
-    ys: &[L::F],
+    regs: &mut [[V; NB]],
+    xs: &[L::F; NB],
+    ys: &[L::F; NB],
 ) {
-    let nb = xs.len();
     let prm = Params(&tape.params);
     for ins in &tape.instrs {
         let (d, a, b, c) = (
-            ins.dst as usize * nb,
-            ins.a as usize * nb,
-            ins.b as usize * nb,
-            ins.c as usize * nb,
+            ins.dst as usize,
+            ins.a as usize,
+            ins.b as usize,
+            ins.c as usize,
         );
         let imm = ins.imm_f32();
-        // Each arm reads its operands for lane register `j` before writing the result, so
-        // a destination may share a register with an operand.
+        // Operands are copied out before the result is written, so a destination may
+        // share a register with an operand.
         macro_rules! each {
-            (|$j:ident| $e:expr) => {
-                for $j in 0..nb {
-                    let r = $e;
-                    regs[d + $j] = r;
+            (|$j:ident| $e:expr) => {{
+                let mut out = regs[d];
+                for $j in 0..NB {
+                    out[$j] = $e;
                 }
-            };
+                regs[d] = out;
+            }};
         }
         macro_rules! un {
-            (|$x:ident| $e:expr) => {
+            (|$x:ident| $e:expr) => {{
+                let xa = regs[a];
                 each!(|j| {
-                    let $x = regs[a + j];
+                    let $x = xa[j];
                     $e
                 })
-            };
+            }};
         }
         macro_rules! bin {
-            (|$x:ident, $y:ident| $e:expr) => {
+            (|$x:ident, $y:ident| $e:expr) => {{
+                let (xa, xb) = (regs[a], regs[b]);
                 each!(|j| {
-                    let ($x, $y) = (regs[a + j], regs[b + j]);
+                    let ($x, $y) = (xa[j], xb[j]);
                     $e
                 })
-            };
+            }};
         }
         macro_rules! point {
-            (|$p:ident| $e:expr) => {
+            (|$p:ident| $e:expr) => {{
+                let (xa, xb) = (regs[a], regs[b]);
                 each!(|j| {
-                    let $p = P2::new(regs[a + j], regs[b + j]);
+                    let $p = P2::new(xa[j], xb[j]);
                     $e
                 })
-            };
+            }};
         }
         let at = ins.imm as usize;
         match ins.op {
@@ -156,55 +159,65 @@ pub(crate) fn run_tape<L: Lanes, V: Val<L>>(
                 let m = l.and(l.bits_mask(x.v()), l.bits_mask(y.v()));
                 V::lanes(l, l.mask_bits(m))
             }),
-            Op::Select => each!(|j| {
-                let m = l.bits_mask(regs[a + j].v());
-                V::select(l, m, regs[b + j], regs[c + j])
-            }),
+            Op::Select => {
+                let (xa, xb, xc) = (regs[a], regs[b], regs[c]);
+                each!(|j| V::select(l, l.bits_mask(xa[j].v()), xb[j], xc[j]))
+            }
             Op::MatConst => each!(|j| V::lanes(l, l.int_bits(l.splat_i(ins.imm as i32)))),
-            Op::MatSelect => each!(|j| {
-                let m = l.bits_mask(regs[a + j].v());
-                V::lanes(l, l.select(m, regs[b + j].v(), regs[c + j].v()))
-            }),
+            Op::MatSelect => {
+                let (xa, xb, xc) = (regs[a], regs[b], regs[c]);
+                each!(|j| V::lanes(l, l.select(l.bits_mask(xa[j].v()), xb[j].v(), xc[j].v())))
+            }
             Op::Hypot => bin!(|x, y| x.mul(l, x).add(l, y.mul(l, y)).sqrt(l)),
             Op::MaxNeg => bin!(|x, y| x.max(l, y.neg(l))),
             Op::MinNeg => bin!(|x, y| x.min(l, y.neg(l))),
+            Op::Max3 => {
+                let (xa, xb, xc) = (regs[a], regs[b], regs[c]);
+                each!(|j| xa[j].max(l, xb[j]).max(l, xc[j]))
+            }
+            Op::Min3 => {
+                let (xa, xb, xc) = (regs[a], regs[b], regs[c]);
+                each!(|j| xa[j].min(l, xb[j]).min(l, xc[j]))
+            }
+            Op::MaxSubImm => bin!(|x, y| x.max(l, y.sub(l, V::cst(l, imm)))),
+            Op::MaxRSubImm => bin!(|x, y| x.max(l, V::cst(l, imm).sub(l, y))),
+            Op::MaxAddImm => bin!(|x, y| x.max(l, y.add(l, V::cst(l, imm)))),
+            Op::MinSubImm => bin!(|x, y| x.min(l, y.sub(l, V::cst(l, imm)))),
+            Op::MinRSubImm => bin!(|x, y| x.min(l, V::cst(l, imm).sub(l, y))),
+            Op::MinAddImm => bin!(|x, y| x.min(l, y.add(l, V::cst(l, imm)))),
+            Op::MaxSub => {
+                let (xa, xb, xc) = (regs[a], regs[b], regs[c]);
+                each!(|j| xa[j].max(l, xb[j].sub(l, xc[j])))
+            }
+            Op::MinSub => {
+                let (xa, xb, xc) = (regs[a], regs[b], regs[c]);
+                each!(|j| xa[j].min(l, xb[j].sub(l, xc[j])))
+            }
         }
     }
 }
 
-/// Block geometry of a backend: lane registers per block.
-pub(crate) fn block_registers<L: Lanes>() -> usize {
-    match L::WIDTH {
-        1 => 1,
-        16 => 4,
-        _ => 8,
-    }
-}
-
-/// Loads `nb` lane registers of x and y from `points` (shorter input repeats its last
+/// Loads `NB` lane registers of x and y from `points` (shorter input repeats its last
 /// point so every lane holds a real point).
 #[inline(always)]
-pub(crate) fn load_points<L: Lanes>(
+pub(crate) fn load_points<L: Lanes, const NB: usize>(
     l: L,
     points: &[Vec2],
-    xs: &mut Vec<L::F>,
-    ys: &mut Vec<L::F>,
-    nb: usize,
+    xs: &mut [L::F; NB],
+    ys: &mut [L::F; NB],
 ) {
-    xs.clear();
-    ys.clear();
     let w = L::WIDTH;
     let mut bx = [0.0f32; 16];
     let mut by = [0.0f32; 16];
     let last = points.len().saturating_sub(1);
-    for r in 0..nb {
+    for r in 0..NB {
         for k in 0..w {
             let p = points.get(r * w + k).or(points.get(last)).copied();
             let p = p.unwrap_or(Vec2::ZERO);
             bx[k] = p.x;
             by[k] = p.y;
         }
-        xs.push(l.load(&bx));
-        ys.push(l.load(&by));
+        xs[r] = l.load(&bx);
+        ys[r] = l.load(&by);
     }
 }

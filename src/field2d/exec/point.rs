@@ -12,8 +12,8 @@ use crate::field2d::simd::scalar::Scalar;
 use crate::field2d::tape::{MatOut, Tape};
 
 thread_local! {
-    static PLAIN: RefCell<Vec<Fv<Scalar>>> = const { RefCell::new(Vec::new()) };
-    static DUAL: RefCell<Vec<Dv<Scalar>>> = const { RefCell::new(Vec::new()) };
+    static PLAIN: RefCell<Vec<[Fv<Scalar>; 1]>> = const { RefCell::new(Vec::new()) };
+    static DUAL: RefCell<Vec<[Dv<Scalar>; 1]>> = const { RefCell::new(Vec::new()) };
 }
 
 fn material_of(tape: &Tape, bits: f32) -> MaterialId {
@@ -28,12 +28,12 @@ pub(crate) fn value(tape: &Tape, p: Vec2) -> (f32, MaterialId) {
     PLAIN.with(|regs| {
         let mut regs = regs.borrow_mut();
         if regs.len() < tape.registers {
-            regs.resize(tape.registers, Fv(0.0));
+            regs.resize(tape.registers, [Fv(0.0)]);
         }
         run_tape(Scalar, tape, &mut regs, &[p.x], &[p.y]);
-        let v = regs[tape.value as usize].0;
+        let v = regs[tape.value as usize][0].0;
         let m = match tape.material {
-            MatOut::Value(r) => material_of(tape, regs[r as usize].0),
+            MatOut::Value(r) => material_of(tape, regs[r as usize][0].0),
             MatOut::Const(m) => m,
         };
         (v, m)
@@ -50,12 +50,12 @@ pub(crate) fn dual(tape: &Tape, p: Vec2) -> (Dual, MaterialId) {
             dy: 0.0,
         };
         if regs.len() < tape.registers {
-            regs.resize(tape.registers, zero);
+            regs.resize(tape.registers, [zero]);
         }
         run_tape(Scalar, tape, &mut regs, &[p.x], &[p.y]);
-        let d = regs[tape.value as usize];
+        let d = regs[tape.value as usize][0];
         let m = match tape.material {
-            MatOut::Value(r) => material_of(tape, regs[r as usize].v),
+            MatOut::Value(r) => material_of(tape, regs[r as usize][0].v),
             MatOut::Const(m) => m,
         };
         (

@@ -19,7 +19,7 @@ impl Avx2 {
     pub(crate) fn call<K: Kernel>(self, k: K) -> K::Output {
         #[target_feature(enable = "avx2")]
         unsafe fn inner<K: Kernel>(l: Avx2, k: K) -> K::Output {
-            k.run(l)
+            k.run::<Avx2, { super::SIMD_BLOCK }>(l)
         }
         // SAFETY: an `Avx2` token exists only after runtime detection of AVX2.
         unsafe { inner(self, k) }

@@ -20,7 +20,7 @@ impl Avx512 {
     pub(crate) fn call<K: Kernel>(self, k: K) -> K::Output {
         #[target_feature(enable = "avx512f")]
         unsafe fn inner<K: Kernel>(l: Avx512, k: K) -> K::Output {
-            k.run(l)
+            k.run::<Avx512, { super::SIMD_BLOCK }>(l)
         }
         // SAFETY: an `Avx512` token exists only after runtime detection of AVX-512F.
         unsafe { inner(self, k) }

@@ -292,14 +292,18 @@ fn unavailable(backend: Backend) -> BackendError {
 pub(crate) trait Kernel {
     /// What the work returns.
     type Output;
-    /// Does the work on lanes `l`.
-    fn run<L: Lanes>(self, l: L) -> Self::Output;
+    /// Does the work on lanes `l`, `NB` lane registers of points at a time.
+    fn run<L: Lanes, const NB: usize>(self, l: L) -> Self::Output;
 }
+
+/// Lane registers per block on the SIMD backends: each decoded instruction is applied to
+/// `SIMD_BLOCK * WIDTH` points. The scalar backend takes one point at a time.
+pub(crate) const SIMD_BLOCK: usize = 16;
 
 /// Runs `k` on `backend`: the one place that turns a [`Backend`] value into code.
 pub(crate) fn run<K: Kernel>(backend: Backend, k: K) -> Result<K::Output, BackendError> {
     match backend {
-        Backend::Scalar => Ok(k.run(scalar::Scalar)),
+        Backend::Scalar => Ok(k.run::<scalar::Scalar, 1>(scalar::Scalar)),
         #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
         Backend::Sse2 => match sse2::Sse2::new() {
             Some(l) => Ok(l.call(k)),

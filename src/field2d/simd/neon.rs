@@ -21,7 +21,7 @@ impl Neon {
     pub(crate) fn call<K: Kernel>(self, k: K) -> K::Output {
         #[target_feature(enable = "neon")]
         unsafe fn inner<K: Kernel>(l: Neon, k: K) -> K::Output {
-            k.run(l)
+            k.run::<Neon, { super::SIMD_BLOCK }>(l)
         }
         // SAFETY: a `Neon` token exists only after runtime detection of NEON.
         unsafe { inner(self, k) }

@@ -21,7 +21,7 @@ impl Sse2 {
     pub(crate) fn call<K: Kernel>(self, k: K) -> K::Output {
         #[target_feature(enable = "sse2")]
         unsafe fn inner<K: Kernel>(l: Sse2, k: K) -> K::Output {
-            k.run(l)
+            k.run::<Sse2, { super::SIMD_BLOCK }>(l)
         }
         // SAFETY: an `Sse2` token exists only after runtime detection of SSE2.
         unsafe { inner(self, k) }

@@ -122,10 +122,11 @@ pub fn inside_image(
     o.check()?;
     let n = o.size as usize;
     let mut image = vec![false; n * n];
-    let root = program.fuse();
+    // Specialization decides on plain instructions; tapes are fused when they are made.
+    let root = program;
     let threads = o.threads.clamp(1, 64);
     if o.tiles.is_empty() {
-        let tape = root.tape(Outputs::Value);
+        let tape = root.fuse().tape(Outputs::Value);
         let rows: Vec<(usize, &mut [bool])> = image.chunks_mut(n).enumerate().collect();
         let stats = in_threads(rows, threads, |rows| brute_rows(&tape, o, rows))?;
         return Ok((image, stats));
@@ -143,7 +144,7 @@ pub fn inside_image(
                     y: band * top,
                     size: top,
                 };
-                render_tile(&root, o, 0, tile, band * top, px, &mut st)?;
+                render_tile(root, o, 0, tile, band * top, px, &mut st)?;
             }
         }
         Ok(st)
@@ -291,7 +292,7 @@ fn leaves(
                 st.filled_tiles += 1;
                 continue;
             }
-            let tape = tape.get_or_insert_with(|| program.tape(Outputs::Value));
+            let tape = tape.get_or_insert_with(|| program.fuse().tape(Outputs::Value));
             pts.clear();
             for j in t.y..t.y + sub {
                 for i in t.x..t.x + sub {

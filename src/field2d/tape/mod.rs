@@ -136,11 +136,31 @@ pub enum Op {
     MaxNeg,
     /// Fused: `min(a, -b)`.
     MinNeg,
+    /// Fused: `max(max(a, b), c)`.
+    Max3,
+    /// Fused: `min(min(a, b), c)`.
+    Min3,
+    /// Fused: `max(a, b - C)`.
+    MaxSubImm,
+    /// Fused: `max(a, C - b)`.
+    MaxRSubImm,
+    /// Fused: `max(a, b + C)`.
+    MaxAddImm,
+    /// Fused: `max(a, b - c)`.
+    MaxSub,
+    /// Fused: `min(a, b - C)`.
+    MinSubImm,
+    /// Fused: `min(a, C - b)`.
+    MinRSubImm,
+    /// Fused: `min(a, b + C)`.
+    MinAddImm,
+    /// Fused: `min(a, b - c)`.
+    MinSub,
 }
 
 impl Op {
     /// Every instruction code.
-    pub const ALL: [Op; 46] = [
+    pub const ALL: [Op; 56] = [
         Op::X,
         Op::Y,
         Op::Const,
@@ -187,6 +207,16 @@ impl Op {
         Op::Hypot,
         Op::MaxNeg,
         Op::MinNeg,
+        Op::Max3,
+        Op::Min3,
+        Op::MaxSubImm,
+        Op::MaxRSubImm,
+        Op::MaxAddImm,
+        Op::MaxSub,
+        Op::MinSubImm,
+        Op::MinRSubImm,
+        Op::MinAddImm,
+        Op::MinSub,
     ];
 }
 
@@ -231,7 +261,7 @@ impl Op {
             | Op::RepeatIndex
             | Op::RepeatOffset
             | Op::RepeatActive => 1,
-            Op::Select | Op::MatSelect => 3,
+            Op::Select | Op::MatSelect | Op::Max3 | Op::Min3 | Op::MaxSub | Op::MinSub => 3,
             _ => 2,
         }
     }

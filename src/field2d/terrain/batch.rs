@@ -218,13 +218,13 @@ struct Distances<'a, F: Sdf> {
 impl<F: Sdf> Kernel for Distances<'_, F> {
     type Output = ();
     #[inline(always)]
-    fn run<L: Lanes>(self, l: L) {
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
         let t = self.t;
         let band = t.options.band;
-        let mut block: Option<Block<L, Fv<L>>> = None;
+        let mut block: Option<Block<L, Fv<L>, NB>> = None;
         let mut pts = Vec::new();
         let mut lanes = [0.0f32; 16];
-        let nb = crate::field2d::exec::block_registers::<L>();
+        let nb = NB;
         let step = nb * L::WIDTH;
         for g in self.groups {
             let start = t.start(g.cell, false);
@@ -278,15 +278,15 @@ struct Samples<'a, F: Sdf> {
 impl<F: Sdf> Kernel for Samples<'_, F> {
     type Output = ();
     #[inline(always)]
-    fn run<L: Lanes>(self, l: L) {
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
         let t = self.t;
         let band = t.options.band;
-        let mut block: Option<Block<L, Dv<L>>> = None;
+        let mut block: Option<Block<L, Dv<L>, NB>> = None;
         let mut pts = Vec::new();
         let (mut v, mut gx, mut gy) = ([0.0f32; 16], [0.0f32; 16], [0.0f32; 16]);
         let mut mats = [0i32; 16];
         let mut tape_mats = [0 as MaterialId; 16];
-        let nb = crate::field2d::exec::block_registers::<L>();
+        let nb = NB;
         let step = nb * L::WIDTH;
         for g in self.groups {
             let start = t.start(g.cell, true);
