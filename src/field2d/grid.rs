@@ -345,14 +345,14 @@ impl Grid {
     /// returns its id. Brick count never exceeds the cell count.
     pub(crate) fn store_brick(&mut self, cell: usize, brick: Brick) -> u32 {
         let current = self.cells.get(cell).and_then(|c| c.state.0.brick());
-        if let Some(id) = current
-            && let Some(slot) = self.bricks.get_mut(id as usize)
-        {
+        let reused = current.and_then(|id| self.bricks.get_mut(id as usize).map(|s| (id, s)));
+        if let Some((id, slot)) = reused {
             *slot = brick;
             return id;
         }
-        if let Some(id) = self.free_bricks.pop()
-            && let Some(slot) = self.bricks.get_mut(id as usize)
+        let freed = self.free_bricks.pop();
+        if let Some((id, slot)) =
+            freed.and_then(|id| self.bricks.get_mut(id as usize).map(|s| (id, s)))
         {
             *slot = brick;
             return id;
@@ -368,9 +368,9 @@ impl Grid {
         };
         let old = c.state.0.brick();
         c.state = CellStateSlot(state);
-        if let Some(id) = old
-            && state.brick() != Some(id)
-            && let Some(b) = self.bricks.get_mut(id as usize)
+        let dropped = old.filter(|&id| state.brick() != Some(id));
+        if let Some((id, b)) =
+            dropped.and_then(|id| self.bricks.get_mut(id as usize).map(|b| (id, b)))
         {
             *b = Brick::default();
             self.free_bricks.push(id);

@@ -273,13 +273,14 @@ impl Level {
 /// Every `Material` id must index the palette.
 fn check_materials(node: &Node, path: &str, count: usize) -> Result<(), LevelError> {
     let here = format!("{path}.{}", node.kind());
-    if let Node::Material { id, .. } = node
-        && *id as usize >= count
-    {
-        return Err(LevelError::Invalid {
-            path: format!("{here}.id"),
-            reason: format!("material {id} is not in the palette of {count} materials"),
-        });
+    match node {
+        Node::Material { id, .. } if *id as usize >= count => {
+            return Err(LevelError::Invalid {
+                path: format!("{here}.id"),
+                reason: format!("material {id} is not in the palette of {count} materials"),
+            });
+        }
+        _ => {}
     }
     for (label, child) in node.children() {
         check_materials(child, &format!("{here}{label}"), count)?;
