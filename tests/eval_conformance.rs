@@ -712,16 +712,26 @@ fn prospero_specialized_image_equals_brute_force() {
         inside > 1000 && inside < 256 * 256 / 2,
         "{inside} inside pixels"
     );
-    for (tiles, threads) in [(vec![64, 16, 4], 1), (vec![32, 8], 2), (vec![16], 1)] {
+    let cases = [
+        (vec![64, 16, 4], 1, true),
+        (vec![32, 8], 2, false),
+        (vec![16], 1, true),
+        (vec![128, 32, 16], 1, false),
+    ];
+    for (tiles, threads, leaf_bounds) in cases {
         let o = ImageOptions {
             tiles: tiles.clone(),
             threads,
+            leaf_bounds,
             ..brute_opts.clone()
         };
         let (img, stats) = inside_image(&program, &o).unwrap();
         let diff = img.iter().zip(&brute).filter(|(a, b)| a != b).count();
         assert_eq!(diff, 0, "tiles {tiles:?}: {diff} pixels differ");
-        assert!(stats.filled_tiles > 0 && stats.evaluated_pixels < 256 * 256);
+        assert!(
+            stats.filled_tiles > 0 && stats.evaluated_pixels < 256 * 256,
+            "tiles {tiles:?}: {stats:?}"
+        );
     }
     let bad = ImageOptions {
         tiles: vec![100],

@@ -62,6 +62,7 @@ pub struct Options {
     pub prospero: Option<PathBuf>,
     pub only: Option<String>,
     pub backends: Vec<String>,
+    pub tiles: Vec<u32>,
 }
 
 /// The backends to measure: those asked for (all available by default).
@@ -86,6 +87,7 @@ pub fn eval(o: Options) -> Result<ExitCode, String> {
         prospero,
         only,
         backends: names,
+        tiles,
     } = o;
     let list = backends(&names)?;
     // A workload runs when the filter names it, a prefix of it, or a group it belongs to.
@@ -124,7 +126,7 @@ pub fn eval(o: Options) -> Result<ExitCode, String> {
         _ if !wanted("prospero") => {}
         Ok(text) => {
             let parts = (wanted("prospero-brute"), wanted("prospero-specialized"));
-            prospero_rows(&text, &path, &list, parts, &mut rows, &mut notes)?
+            prospero_rows(&text, &path, &list, parts, &tiles, &mut rows, &mut notes)?
         }
         Err(e) => notes.push(format!(
             "prospero workloads skipped: cannot read {} ({e}); pass --prospero FILE",
@@ -230,6 +232,7 @@ fn prospero_rows(
     path: &Path,
     list: &[Backend],
     (do_brute, do_spec): (bool, bool),
+    tiles: &[u32],
     rows: &mut Vec<Row>,
     notes: &mut Vec<String>,
 ) -> Result<(), String> {
@@ -240,7 +243,10 @@ fn prospero_rows(
         tiles: vec![],
         ..ImageOptions::default()
     };
-    let spec = ImageOptions::default();
+    let mut spec = ImageOptions::default();
+    if !tiles.is_empty() {
+        spec.tiles = tiles.to_vec();
+    }
     let mut check = ImageCheck::default();
     let fused = program.fuse().tape(Outputs::Value);
     let plain = program.tape(Outputs::Value);

@@ -90,6 +90,9 @@ enum BenchCommand {
         /// Only these backends, comma-separated (e.g. `avx2,scalar`).
         #[arg(long, value_delimiter = ',')]
         backends: Vec<String>,
+        /// Tile sides of the specialized prospero render, largest first (default 256,64,32).
+        #[arg(long, value_delimiter = ',')]
+        tiles: Vec<u32>,
     },
 }
 
@@ -121,6 +124,7 @@ fn main() -> ExitCode {
                     prospero,
                     only,
                     backends,
+                    tiles,
                 },
         } => bench_eval::eval(bench_eval::Options {
             json,
@@ -128,6 +132,7 @@ fn main() -> ExitCode {
             prospero,
             only,
             backends,
+            tiles,
         }),
     };
     match result {

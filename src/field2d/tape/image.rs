@@ -30,6 +30,9 @@ pub struct ImageOptions {
     pub backend: Backend,
     /// Threads (tiles of the first level are shared out).
     pub threads: usize,
+    /// Whether the smallest tiles are bounded before they are evaluated (a bound costs
+    /// about as much as evaluating a few dozen points).
+    pub leaf_bounds: bool,
 }
 
 impl Default for ImageOptions {
@@ -38,9 +41,10 @@ impl Default for ImageOptions {
             size: 1024,
             min: Vec2::splat(-1.0),
             max: Vec2::splat(1.0),
-            tiles: vec![128, 32, 8],
+            tiles: vec![256, 64, 32],
             backend: Backend::best(),
             threads: 1,
+            leaf_bounds: false,
         }
     }
 }
@@ -285,12 +289,14 @@ fn leaves(
                 y: tile.y + sy,
                 size: sub,
             };
-            let lo = o.pixel(t.x as u32, (t.y + sub - 1) as u32);
-            let hi = o.pixel((t.x + sub - 1) as u32, t.y as u32);
-            if let Some(inside) = decided(program.bound(lo, hi)) {
-                fill(o, t, row0, px, inside);
-                st.filled_tiles += 1;
-                continue;
+            if o.leaf_bounds {
+                let lo = o.pixel(t.x as u32, (t.y + sub - 1) as u32);
+                let hi = o.pixel((t.x + sub - 1) as u32, t.y as u32);
+                if let Some(inside) = decided(program.bound(lo, hi)) {
+                    fill(o, t, row0, px, inside);
+                    st.filled_tiles += 1;
+                    continue;
+                }
             }
             let tape = tape.get_or_insert_with(|| program.fuse().tape(Outputs::Value));
             pts.clear();

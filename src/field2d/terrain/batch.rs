@@ -12,7 +12,7 @@ use glam::Vec2;
 
 use super::Terrain;
 use super::plan::CellPlan;
-use crate::field2d::event::{Event, EventKind};
+use crate::field2d::event::EventKind;
 use crate::field2d::exec::batch::Block;
 use crate::field2d::exec::value::clamp;
 use crate::field2d::exec::{Dv, Fv, P2, Val};
@@ -192,12 +192,25 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
-    /// The cell's events in order, as they apply at the current tick.
-    fn cell_events(&self, cell: Option<usize>) -> impl Iterator<Item = &Event> {
-        cell.and_then(|c| self.grid.cells.get(c))
-            .into_iter()
-            .flat_map(|c| c.events.iter())
-            .filter_map(|&i| self.events.get(i as usize))
+    /// The cell's events in order with their constants at the current tick (events not
+    /// yet started are left out: they change nothing).
+    fn prepared_events(&self, cell: Option<usize>, out: &mut Vec<Prepared>) {
+        out.clear();
+        let list = cell.and_then(|c| self.grid.cells.get(c));
+        for e in list.into_iter().flat_map(|c| c.events.iter()) {
+            let Some(e) = self.events.get(*e as usize) else {
+                continue;
+            };
+            if let Some(r) = e.radius_at(self.tick) {
+                out.push(Prepared {
+                    kind: e.kind,
+                    center: e.center_f32(),
+                    radius: r,
+                    rim: e.rim_f32(),
+                    material: e.material,
+                });
+            }
+        }
     }
 }
 
@@ -224,39 +237,38 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
         let mut block: Option<Block<L, Fv<L>, NB>> = None;
         let mut pts = Vec::new();
         let mut lanes = [0.0f32; 16];
-        let nb = NB;
-        let step = nb * L::WIDTH;
+        let mut events = Vec::new();
+        let step = NB * L::WIDTH;
         for g in self.groups {
             let start = t.start(g.cell, false);
+            t.prepared_events(g.cell, &mut events);
             for idx in self.order[g.start..g.end].chunks(step) {
                 gather(self.points, idx, &mut pts);
-                let mut ds: Vec<Fv<L>> = Vec::with_capacity(nb);
+                let ps: [P2<Fv<L>>; NB] = std::array::from_fn(|r| lane_point(l, &pts, r));
+                let mut ds = [Fv::cst(l, band); NB];
                 match &start {
                     Start::Base(plan) => {
                         let b = block.get_or_insert_with(|| Block::new(l, &plan.value));
                         b.run(l, &plan.value, &pts);
-                        for r in 0..nb {
-                            ds.push(clamp(l, b.get(plan.value.value, r), -band, band));
+                        for (r, d) in ds.iter_mut().enumerate() {
+                            *d = clamp(l, b.get(plan.value.value, r), -band, band);
                         }
                     }
-                    Start::Constant(v, _) => ds.resize(nb, Fv::cst(l, *v)),
-                    Start::AirFromBase(_) | Start::AirFromBrick(_) => {
-                        ds.resize(nb, Fv::cst(l, band))
-                    }
+                    Start::Constant(v, _) => ds = [Fv::cst(l, *v); NB],
+                    Start::AirFromBase(_) | Start::AirFromBrick(_) => {}
                     Start::Brick(id) => {
-                        for r in 0..nb {
-                            let p = lane_point::<L, Fv<L>>(l, &pts, r);
-                            let (d, _) = brick(l, t, *id, g.cell, p, false);
-                            ds.push(d);
+                        for (d, p) in ds.iter_mut().zip(&ps) {
+                            *d = brick(l, t, *id, g.cell, *p, false).0;
                         }
                     }
                 }
-                for (r, d) in ds.iter_mut().enumerate() {
-                    let p = lane_point::<L, Fv<L>>(l, &pts, r);
-                    let mut mat = l.splat_i(0);
-                    for e in t.cell_events(g.cell) {
-                        (*d, mat) = apply_event(l, *d, mat, p, e, t.tick, band);
+                let mut mats = [l.splat_i(0); NB];
+                for e in &events {
+                    for r in 0..NB {
+                        (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
                     }
+                }
+                for (r, d) in ds.iter().enumerate() {
                     l.store(d.0, &mut lanes);
                     for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
                         self.out[i as usize] = lanes[k - r * L::WIDTH];
@@ -284,62 +296,64 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
         let mut block: Option<Block<L, Dv<L>, NB>> = None;
         let mut pts = Vec::new();
         let (mut v, mut gx, mut gy) = ([0.0f32; 16], [0.0f32; 16], [0.0f32; 16]);
-        let mut mats = [0i32; 16];
+        let mut mat_lanes = [0i32; 16];
         let mut tape_mats = [0 as MaterialId; 16];
-        let nb = NB;
-        let step = nb * L::WIDTH;
+        let mut events = Vec::new();
+        let step = NB * L::WIDTH;
         for g in self.groups {
             let start = t.start(g.cell, true);
+            t.prepared_events(g.cell, &mut events);
             for idx in self.order[g.start..g.end].chunks(step) {
                 gather(self.points, idx, &mut pts);
-                let mut ds: Vec<(Dv<L>, L::I)> = Vec::with_capacity(nb);
+                let ps: [P2<Dv<L>>; NB] = std::array::from_fn(|r| lane_point(l, &pts, r));
+                let mut ds = [Dv::cst(l, band); NB];
+                let mut mats = [l.splat_i(0); NB];
                 match &start {
                     Start::Base(plan) | Start::AirFromBase(plan) => {
                         let tape = &plan.material;
                         let b = block.get_or_insert_with(|| Block::new(l, tape));
                         b.run(l, tape, &pts);
-                        for r in 0..nb {
+                        let base = matches!(start, Start::Base(_));
+                        for r in 0..NB {
                             b.materials(l, tape, r, &mut tape_mats);
-                            let m = tape_mats.map(i32::from);
-                            let mat = l.load_i(&m);
-                            let d = match start {
-                                Start::Base(_) => clamp(l, b.get(tape.value, r), -band, band),
-                                _ => Dv::cst(l, band),
-                            };
-                            ds.push((d, mat));
+                            mats[r] = l.load_i(&tape_mats.map(i32::from));
+                            if base {
+                                ds[r] = clamp(l, b.get(tape.value, r), -band, band);
+                            }
                         }
                     }
                     Start::Constant(v, m) => {
-                        let mat = l.splat_i(i32::from(m.unwrap_or(0)));
-                        ds.resize(nb, (Dv::cst(l, *v), mat));
+                        ds = [Dv::cst(l, *v); NB];
+                        mats = [l.splat_i(i32::from(m.unwrap_or(0))); NB];
                     }
                     Start::AirFromBrick(id) | Start::Brick(id) => {
-                        for r in 0..nb {
-                            let p = lane_point::<L, Dv<L>>(l, &pts, r);
-                            let (d, m) = brick(l, t, *id, g.cell, p, true);
-                            let d = match start {
-                                Start::Brick(_) => d,
-                                _ => Dv::cst(l, band),
-                            };
-                            ds.push((d, m));
+                        let baked = matches!(start, Start::Brick(_));
+                        for r in 0..NB {
+                            let (d, m) = brick(l, t, *id, g.cell, ps[r], true);
+                            if baked {
+                                ds[r] = d;
+                            }
+                            mats[r] = m;
                         }
                     }
                 }
-                for (r, (d, mat)) in ds.iter_mut().enumerate() {
-                    let p = lane_point::<L, Dv<L>>(l, &pts, r);
-                    for e in t.cell_events(g.cell) {
-                        (*d, *mat) = apply_event(l, *d, *mat, p, e, t.tick, band);
+                for e in &events {
+                    for r in 0..NB {
+                        (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
                     }
+                }
+                for r in 0..NB {
+                    let d = ds[r];
                     l.store(d.v, &mut v);
                     l.store(d.dx, &mut gx);
                     l.store(d.dy, &mut gy);
-                    l.store_i(*mat, &mut mats);
+                    l.store_i(mats[r], &mut mat_lanes);
                     for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
                         let k = k - r * L::WIDTH;
                         self.out[i as usize] = Sample {
                             distance: v[k],
                             gradient: Vec2::new(gx[k], gy[k]),
-                            material: mats[k] as MaterialId,
+                            material: mat_lanes[k] as MaterialId,
                         };
                     }
                 }
@@ -379,6 +393,15 @@ fn smooth<L: Lanes, V: Val<L>>(l: L, a: V, b: V, k: f32, max: bool) -> V {
     V::select(l, l.gt(h.v(), l.splat(0.0)), blended, m)
 }
 
+/// An event's constants at the current tick.
+struct Prepared {
+    kind: EventKind,
+    center: Vec2,
+    radius: f32,
+    rim: f32,
+    material: MaterialId,
+}
+
 /// `terrain::apply_event` on lanes.
 #[inline(always)]
 fn apply_event<L: Lanes, V: Val<L>>(
@@ -386,15 +409,11 @@ fn apply_event<L: Lanes, V: Val<L>>(
     d: V,
     mat: L::I,
     p: P2<V>,
-    e: &Event,
-    tick: u32,
+    e: &Prepared,
     band: f32,
 ) -> (V, L::I) {
-    let Some(r) = e.radius_at(tick) else {
-        return (d, mat);
-    };
-    let c = p.minus(l, e.center_f32()).length(l).offset(l, -r);
-    let k = e.rim_f32();
+    let c = p.minus(l, e.center).length(l).offset(l, -e.radius);
+    let k = e.rim;
     match e.kind {
         EventKind::Carve => {
             let nc = c.neg(l);
