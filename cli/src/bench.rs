@@ -1,5 +1,6 @@
-//! `craterfield bench field`: release-mode throughput of the scalar reference queries on the
-//! default level with 0, 1,000 and 10,000 explosions, measured in this run.
+//! `craterfield bench field`: release-mode throughput of single-point queries (the terrain's
+//! `Sdf` interface: the scalar backend on the query's cell tape, then the cell's events) on
+//! the default level with 0, 1,000 and 10,000 explosions, measured in this run.
 
 use std::collections::BTreeMap;
 use std::process::ExitCode;
@@ -107,7 +108,9 @@ pub fn field(json: bool, points: usize) -> Result<ExitCode, String> {
             serde_json::to_string(&report).map_err(|e| e.to_string())?
         );
     } else {
-        println!("craterfield bench field: default level, scalar reference, one thread");
+        println!(
+            "craterfield bench field: default level, single-point queries (cell tapes, scalar), one thread"
+        );
         println!(
             "{:>10} {:>16} {:>16} {:>14} {:>10} {:>7}",
             "explosions", "dist+grad q/s", "distance q/s", "raycasts/s", "max/cell", "bricks"

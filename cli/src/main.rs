@@ -64,7 +64,7 @@ enum LevelCommand {
 
 #[derive(Subcommand)]
 enum BenchCommand {
-    /// Scalar field queries, raycasts and explosion inserts on the default level.
+    /// Single-point queries, raycasts and explosion inserts on the default level.
     Field {
         /// Print one JSON object instead of a table.
         #[arg(long)]
