@@ -172,6 +172,8 @@ pub(crate) fn guard(event_extent: f64, rect: &Rect) -> f64 {
 pub struct Grid {
     origin: Vec2,
     cell_size: f32,
+    /// `1 / cell_size` when the cell size is a power of two (the reciprocal is exact).
+    inv_pow2: Option<f32>,
     nx: u32,
     ny: u32,
     resolution: u32,
@@ -214,9 +216,13 @@ impl Grid {
         resolution: u32,
     ) -> Result<Grid, GridError> {
         let (nx, ny) = Grid::plan(min, max, cell_size, resolution)?;
+        let inv = 1.0 / cell_size;
+        let exact =
+            cell_size.to_bits() & 0x007f_ffff == 0 && inv.is_normal() && inv * cell_size == 1.0;
         Ok(Grid {
             origin: min,
             cell_size,
+            inv_pow2: exact.then_some(inv),
             nx,
             ny,
             resolution,
@@ -253,9 +259,17 @@ impl Grid {
     }
 
     /// The cell holding `p`, or `None` outside the grid (and for NaN).
+    #[inline]
     pub fn cell_index(&self, p: Vec2) -> Option<usize> {
-        let fx = (p.x - self.origin.x) / self.cell_size;
-        let fy = (p.y - self.origin.y) / self.cell_size;
+        let (fx, fy) = match self.inv_pow2 {
+            // Dividing by a power of two and multiplying by its (exact) reciprocal round
+            // the same exact quotient: the same bits, without a division.
+            Some(inv) => ((p.x - self.origin.x) * inv, (p.y - self.origin.y) * inv),
+            None => (
+                (p.x - self.origin.x) / self.cell_size,
+                (p.y - self.origin.y) / self.cell_size,
+            ),
+        };
         if !(fx >= 0.0 && fx < self.nx as f32 && fy >= 0.0 && fy < self.ny as f32) {
             return None;
         }

@@ -146,7 +146,6 @@ fn ellipse_closest<L: Lanes>(l: L, px: L::F, py: L::F, r: Vec2) -> (L::F, L::F) 
     let mut ty = tx;
     let ab = a * a - b * b;
     let (sab, snab) = (l.splat(ab), l.splat(-ab));
-    let clamp01 = |x: L::F| l.min(l.max(x, zero), one);
     for _ in 0..crate::field2d::primitives::ELLIPSE_ITERATIONS {
         let x = l.mul(sa, tx);
         let y = l.mul(sb, ty);
@@ -159,8 +158,11 @@ fn ellipse_closest<L: Lanes>(l: L, px: L::F, py: L::F, r: Vec2) -> (L::F, L::F) 
         let rl = l.sqrt(l.add(l.mul(rx, rx), l.mul(ry, ry)));
         let ql = l.sqrt(l.add(l.mul(qx, qx), l.mul(qy, qy)));
         let moved = l.gt(ql, zero);
-        let nx = clamp01(l.div(l.add(l.div(l.mul(qx, rl), ql), ex), sa));
-        let ny = clamp01(l.div(l.add(l.div(l.mul(qy, rl), ql), ey), sb));
+        // (No closures here: a closure is compiled without the backend's instruction set.)
+        let nx = l.div(l.add(l.div(l.mul(qx, rl), ql), ex), sa);
+        let ny = l.div(l.add(l.div(l.mul(qy, rl), ql), ey), sb);
+        let nx = l.min(l.max(nx, zero), one);
+        let ny = l.min(l.max(ny, zero), one);
         tx = l.select(moved, nx, tx);
         ty = l.select(moved, ny, ty);
         let t = l.sqrt(l.add(l.mul(tx, tx), l.mul(ty, ty)));

@@ -19,7 +19,7 @@ use crate::field2d::exec::{Dv, Fv, P2, Val};
 use crate::field2d::grid::{CellState, MaterialSource};
 use crate::field2d::sdf::{MaterialId, Sample, Sdf};
 use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
-use crate::field2d::tape::EvalError;
+use crate::field2d::tape::{EvalError, MatOut};
 
 /// Points of one cell (`None`: outside the grid), as a range of the sorted order.
 struct Group {
@@ -34,6 +34,7 @@ fn group(
     cell_of: impl Fn(Vec2) -> Option<usize>,
     cells: usize,
 ) -> (Vec<u32>, Vec<Group>) {
+    // Keys: a cell, `cells` for outside the grid, `cells + 1` for NaN.
     let key = |p: Vec2| -> usize {
         if p.x.is_nan() || p.y.is_nan() {
             cells + 1
@@ -41,37 +42,55 @@ fn group(
             cell_of(p).unwrap_or(cells)
         }
     };
-    let keys: Vec<u32> = points.iter().map(|&p| key(p) as u32).collect();
-    let mut order: Vec<u32> = (0..points.len() as u32).collect();
-    if cells <= points.len().saturating_mul(4) {
-        let mut counts = vec![0u32; cells + 3];
-        for &k in &keys {
-            counts[k as usize + 1] += 1;
-        }
-        for i in 1..counts.len() {
-            counts[i] += counts[i - 1];
-        }
-        for (i, &k) in keys.iter().enumerate() {
-            order[counts[k as usize] as usize] = i as u32;
-            counts[k as usize] += 1;
-        }
-    } else {
+    let group_of = |k: usize, start: usize, end: usize| {
+        (k <= cells).then(|| Group {
+            cell: (k < cells).then_some(k),
+            start,
+            end,
+        })
+    };
+    if cells > points.len().saturating_mul(4) {
+        // Few points on a large grid: a comparison sort, then runs of equal keys.
+        let keys: Vec<u32> = points.iter().map(|&p| key(p) as u32).collect();
+        let mut order: Vec<u32> = (0..points.len() as u32).collect();
         order.sort_unstable_by_key(|&i| keys[i as usize]);
-    }
-    let mut groups = Vec::new();
-    let mut start = 0;
-    while start < order.len() {
-        let k = keys[order[start] as usize];
-        let mut end = start + 1;
-        while end < order.len() && keys[order[end] as usize] == k {
-            end += 1;
+        let mut groups = Vec::new();
+        let mut start = 0;
+        while start < order.len() {
+            let k = keys[order[start] as usize];
+            let mut end = start + 1;
+            while end < order.len() && keys[order[end] as usize] == k {
+                end += 1;
+            }
+            groups.extend(group_of(k as usize, start, end));
+            start = end;
         }
-        if (k as usize) < cells + 1 {
-            let cell = ((k as usize) < cells).then_some(k as usize);
-            groups.push(Group { cell, start, end });
-        }
-        start = end;
+        return (order, groups);
     }
+    // A counting sort: keys and their counts in one pass, then placement; each key's
+    // range of the order is known from the counts.
+    let mut counts = vec![0u32; cells + 3];
+    let keys: Vec<u32> = points
+        .iter()
+        .map(|&p| {
+            let k = key(p);
+            counts[k + 1] += 1;
+            k as u32
+        })
+        .collect();
+    for i in 1..counts.len() {
+        counts[i] += counts[i - 1];
+    }
+    let starts = counts.clone();
+    let mut order = vec![0u32; points.len()];
+    for (i, &k) in keys.iter().enumerate() {
+        order[counts[k as usize] as usize] = i as u32;
+        counts[k as usize] += 1;
+    }
+    let groups = (0..cells + 2)
+        .filter(|&k| starts[k + 1] > starts[k])
+        .filter_map(|k| group_of(k, starts[k] as usize, starts[k + 1] as usize))
+        .collect();
     (order, groups)
 }
 
@@ -242,11 +261,32 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
         for g in self.groups {
             let start = t.start(g.cell, false);
             t.prepared_events(g.cell, &mut events);
+            if events.is_empty() {
+                // A constant cell: no point is needed.
+                let constant = match &start {
+                    Start::Base(plan) => plan.clamped,
+                    Start::Constant(v, _) => Some(*v),
+                    Start::AirFromBase(_) | Start::AirFromBrick(_) => Some(band),
+                    Start::Brick(_) => None,
+                };
+                if let Some(c) = constant {
+                    for &i in &self.order[g.start..g.end] {
+                        self.out[i as usize] = c;
+                    }
+                    continue;
+                }
+            }
             for idx in self.order[g.start..g.end].chunks(step) {
                 gather(self.points, idx, &mut pts);
-                let ps: [P2<Fv<L>>; NB] = std::array::from_fn(|r| lane_point(l, &pts, r));
+                let mut ps = [P2::new(Fv::cst(l, 0.0), Fv::cst(l, 0.0)); NB];
+                for (r, p) in ps.iter_mut().enumerate() {
+                    *p = lane_point(l, &pts, r);
+                }
                 let mut ds = [Fv::cst(l, band); NB];
                 match &start {
+                    Start::Base(plan) if plan.clamped.is_some() => {
+                        ds = [Fv::cst(l, plan.clamped.unwrap_or(band)); NB];
+                    }
                     Start::Base(plan) => {
                         let b = block.get_or_insert_with(|| Block::new(l, &plan.value));
                         b.run(l, &plan.value, &pts);
@@ -303,9 +343,18 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
         for g in self.groups {
             let start = t.start(g.cell, true);
             t.prepared_events(g.cell, &mut events);
+            if let Some(s) = constant_sample(&start, events.is_empty(), band) {
+                for &i in &self.order[g.start..g.end] {
+                    self.out[i as usize] = s;
+                }
+                continue;
+            }
             for idx in self.order[g.start..g.end].chunks(step) {
                 gather(self.points, idx, &mut pts);
-                let ps: [P2<Dv<L>>; NB] = std::array::from_fn(|r| lane_point(l, &pts, r));
+                let mut ps = [P2::new(Dv::cst(l, 0.0), Dv::cst(l, 0.0)); NB];
+                for (r, p) in ps.iter_mut().enumerate() {
+                    *p = lane_point(l, &pts, r);
+                }
                 let mut ds = [Dv::cst(l, band); NB];
                 let mut mats = [l.splat_i(0); NB];
                 match &start {
@@ -318,7 +367,10 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                             b.materials(l, tape, r, &mut tape_mats);
                             mats[r] = l.load_i(&tape_mats.map(i32::from));
                             if base {
-                                ds[r] = clamp(l, b.get(tape.value, r), -band, band);
+                                ds[r] = match plan.clamped {
+                                    Some(c) => Dv::cst(l, c),
+                                    None => clamp(l, b.get(tape.value, r), -band, band),
+                                };
                             }
                         }
                     }
@@ -360,6 +412,31 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
             }
         }
     }
+}
+
+/// The sample of every point of a cell that is constant there (no events, a constant
+/// state or a clamped base whose material is the same everywhere).
+fn constant_sample(start: &Start<'_>, no_events: bool, band: f32) -> Option<Sample> {
+    if !no_events {
+        return None;
+    }
+    let (distance, material) = match start {
+        Start::Constant(v, m) => (*v, m.unwrap_or(0)),
+        Start::Base(plan) => match (plan.clamped, plan.material.material()) {
+            (Some(c), MatOut::Const(m)) => (c, m),
+            _ => return None,
+        },
+        Start::AirFromBase(plan) => match plan.material.material() {
+            MatOut::Const(m) => (band, m),
+            MatOut::Value(_) => return None,
+        },
+        Start::AirFromBrick(_) | Start::Brick(_) => return None,
+    };
+    Some(Sample {
+        distance,
+        gradient: Vec2::ZERO,
+        material,
+    })
 }
 
 /// Lane register `r` of the gathered points as a point of numbers (padding repeats the
@@ -437,6 +514,14 @@ fn apply_event<L: Lanes, V: Val<L>>(
     }
 }
 
+/// `(x as u32).min(top)` for `x` in `[0, 2^31)` (a lattice coordinate).
+#[inline(always)]
+fn index_at_most<L: Lanes>(l: L, x: L::F, top: i32) -> L::I {
+    let i = l.to_i32(x);
+    let top = l.splat_i(top);
+    l.select_i(l.gt_i(i, top), top, i)
+}
+
 /// `Grid::interpolate` on lanes: the brick's bilinear value (and nearest material).
 #[inline(always)]
 fn brick<L: Lanes, V: Val<L>, F: Sdf>(
@@ -457,12 +542,10 @@ fn brick<L: Lanes, V: Val<L>, F: Sdf>(
     let h = V::cst(l, grid.brick_spacing());
     let u = clamp(l, p.x.offset(l, -m.x).div(l, h), 0.0, nf);
     let v = clamp(l, p.y.offset(l, -m.y).div(l, h), 0.0, nf);
-    let top_index = l.splat_i(n as i32 - 1);
-    let floor_in = |x: L::F| {
-        let i = l.to_i32(x);
-        l.select_i(l.gt_i(i, top_index), top_index, i)
-    };
-    let (i, j) = (floor_in(u.v()), floor_in(v.v()));
+    let (i, j) = (
+        index_at_most(l, u.v(), n as i32 - 1),
+        index_at_most(l, v.v(), n as i32 - 1),
+    );
     let fu = u.offset_v(l, l.neg(l.to_f32(i)));
     let fv = v.offset_v(l, l.neg(l.to_f32(j)));
     let (mut ii, mut jj) = ([0i32; 16], [0i32; 16]);
@@ -488,12 +571,10 @@ fn brick<L: Lanes, V: Val<L>, F: Sdf>(
     if !material {
         return (d, l.splat_i(0));
     }
-    let top_mat = l.splat_i(n as i32);
-    let nearest = |x: L::F| {
-        let i = l.to_i32(l.add(x, l.splat(0.5)));
-        l.select_i(l.gt_i(i, top_mat), top_mat, i)
-    };
-    let (mi, mj) = (nearest(u.v()), nearest(v.v()));
+    let (mi, mj) = (
+        index_at_most(l, l.add(u.v(), l.splat(0.5)), n as i32),
+        index_at_most(l, l.add(v.v(), l.splat(0.5)), n as i32),
+    );
     l.store_i(mi, &mut ii);
     l.store_i(mj, &mut jj);
     let mut mats = [0i32; 16];

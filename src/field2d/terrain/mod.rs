@@ -450,7 +450,7 @@ impl<F: Sdf> Terrain<F> {
         let grid = Grid::new(min, max, options.cell_size, options.brick_resolution)?;
         let plans = base
             .program()
-            .map(|program| Plans::new(program, grid.cells.len()));
+            .map(|program| Plans::new(program, grid.cells.len(), options.band));
         Ok(Terrain {
             base,
             options,
@@ -737,6 +737,17 @@ impl<F: Sdf> Terrain<F> {
         cell: Option<usize>,
     ) -> (N, MaterialId) {
         let m = self.options.band;
+        if let Some(plans) = &self.plans {
+            let plan = plans.get(&self.grid, cell);
+            if let Some(c) = plan.clamped {
+                let mat = if MAT || N::MATERIAL {
+                    N::tape(plan, p, true).1
+                } else {
+                    0
+                };
+                return (N::constant(c), mat);
+            }
+        }
         let (d, mat) = self.base_at::<N>(p, cell, MAT);
         (nclamp(d, -m, m), mat)
     }

@@ -21,17 +21,36 @@ pub(crate) struct CellPlan {
     pub value: Tape,
     /// Distance and material.
     pub material: Tape,
+    /// `Some(±band)` when the base is beyond the band everywhere in the region: the clamp
+    /// then gives that constant with a zero gradient (the material still comes from the
+    /// tape), so the distance needs no evaluation.
+    pub clamped: Option<f32>,
 }
 
 impl CellPlan {
-    fn new(program: &Program, region: Option<(Vec2, Vec2)>) -> CellPlan {
-        let program = match region {
-            Some((min, max)) => program.specialize(min, max).fuse(),
-            None => program.fuse(),
+    fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32) -> CellPlan {
+        let (program, clamped) = match region {
+            Some((min, max)) => {
+                let (p, bound) = program.specialize_with_bound(min, max);
+                // `nmin(nmax(d, -M), M)` is the constant `M` when `d >= M`, and `-M` when
+                // `d <= -M`, whatever the gradient of `d`.
+                let clamped = if bound.nan {
+                    None
+                } else if bound.lo >= band {
+                    Some(band)
+                } else if bound.hi <= -band {
+                    Some(-band)
+                } else {
+                    None
+                };
+                (p.fuse(), clamped)
+            }
+            None => (program.fuse(), None),
         };
         CellPlan {
             value: program.tape(Outputs::Value),
             material: program.tape(Outputs::ValueMaterial),
+            clamped,
         }
     }
 }
@@ -43,15 +62,17 @@ pub(crate) struct Plans {
     cells: Vec<OnceLock<Arc<CellPlan>>>,
     outside: OnceLock<Arc<CellPlan>>,
     specialize: bool,
+    band: f32,
 }
 
 impl Plans {
-    pub fn new(program: Arc<Program>, cells: usize) -> Plans {
+    pub fn new(program: Arc<Program>, cells: usize, band: f32) -> Plans {
         Plans {
             program,
             cells: (0..cells).map(|_| OnceLock::new()).collect(),
             outside: OnceLock::new(),
             specialize: true,
+            band,
         }
     }
 
@@ -68,7 +89,7 @@ impl Plans {
 
     /// The plan of `cell` (`None`: outside the grid).
     pub fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellPlan {
-        let whole = || Arc::new(CellPlan::new(&self.program, None));
+        let whole = || Arc::new(CellPlan::new(&self.program, None, self.band));
         match cell.and_then(|c| self.cells.get(c).map(|slot| (c, slot))) {
             Some((c, slot)) if self.specialize => slot.get_or_init(|| {
                 // Padded: the f32 cell lookup may place a point a rounding error outside
@@ -78,7 +99,7 @@ impl Plans {
                 let pad = s / 1024.0 + (min.abs().max_element() + s) / 1_048_576.0;
                 let max = min + Vec2::splat(s + pad);
                 let min = min - Vec2::splat(pad);
-                Arc::new(CellPlan::new(&self.program, Some((min, max))))
+                Arc::new(CellPlan::new(&self.program, Some((min, max)), self.band))
             }),
             _ => self.outside.get_or_init(whole),
         }
