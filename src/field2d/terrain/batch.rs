@@ -11,7 +11,7 @@
 use glam::Vec2;
 
 use super::Terrain;
-use super::plan::CellPlan;
+use super::plan::{CellPlan, Plans};
 use crate::field2d::event::EventKind;
 use crate::field2d::exec::batch::Block;
 use crate::field2d::exec::value::clamp;
@@ -131,12 +131,12 @@ impl<F: Sdf> Terrain<F> {
                 output: out.len(),
             });
         }
-        if self.plans.is_none() {
+        let Some(plans) = &self.plans else {
             for (o, &p) in out.iter_mut().zip(points) {
                 *o = self.distance(p);
             }
             return Ok(());
-        }
+        };
         let (order, groups) = self.group(points);
         for (o, p) in out.iter_mut().zip(points) {
             if p.x.is_nan() || p.y.is_nan() {
@@ -145,6 +145,7 @@ impl<F: Sdf> Terrain<F> {
         }
         let k = Distances {
             t: self,
+            plans,
             points,
             order: &order,
             groups: &groups,
@@ -162,12 +163,12 @@ impl<F: Sdf> Terrain<F> {
                 output: out.len(),
             });
         }
-        if self.plans.is_none() {
+        let Some(plans) = &self.plans else {
             for (o, &p) in out.iter_mut().zip(points) {
                 *o = self.sample(p);
             }
             return Ok(());
-        }
+        };
         let (order, groups) = self.group(points);
         for (o, p) in out.iter_mut().zip(points) {
             if p.x.is_nan() || p.y.is_nan() {
@@ -176,6 +177,7 @@ impl<F: Sdf> Terrain<F> {
         }
         let k = Samples {
             t: self,
+            plans,
             points,
             order: &order,
             groups: &groups,
@@ -190,10 +192,7 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// How a group's lanes start (state and base).
-    fn start(&self, cell: Option<usize>, material: bool) -> Start<'_> {
-        let Some(plans) = &self.plans else {
-            unreachable!("batch kernels run only with plans")
-        };
+    fn start<'p>(&'p self, plans: &'p Plans, cell: Option<usize>, material: bool) -> Start<'p> {
         let m = self.options.band;
         let state = cell
             .and_then(|c| self.grid.cells.get(c))
@@ -241,6 +240,7 @@ fn gather(points: &[Vec2], idx: &[u32], buf: &mut Vec<Vec2>) {
 
 struct Distances<'a, F: Sdf> {
     t: &'a Terrain<F>,
+    plans: &'a Plans,
     points: &'a [Vec2],
     order: &'a [u32],
     groups: &'a [Group],
@@ -259,7 +259,7 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
         let mut events = Vec::new();
         let step = NB * L::WIDTH;
         for g in self.groups {
-            let start = t.start(g.cell, false);
+            let start = t.start(self.plans, g.cell, false);
             t.prepared_events(g.cell, &mut events);
             if events.is_empty() {
                 // A constant cell: no point is needed.
@@ -321,6 +321,7 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
 
 struct Samples<'a, F: Sdf> {
     t: &'a Terrain<F>,
+    plans: &'a Plans,
     points: &'a [Vec2],
     order: &'a [u32],
     groups: &'a [Group],
@@ -341,7 +342,7 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
         let mut events = Vec::new();
         let step = NB * L::WIDTH;
         for g in self.groups {
-            let start = t.start(g.cell, true);
+            let start = t.start(self.plans, g.cell, true);
             t.prepared_events(g.cell, &mut events);
             if let Some(s) = constant_sample(&start, events.is_empty(), band) {
                 for &i in &self.order[g.start..g.end] {
