@@ -24,7 +24,8 @@ pub enum EvalError {
     Backend(#[from] BackendError),
 }
 
-fn check(input: usize, output: usize) -> Result<(), EvalError> {
+/// `Ok` when the output has one slot per input point.
+pub(crate) fn check(input: usize, output: usize) -> Result<(), EvalError> {
     if input == output {
         Ok(())
     } else {

@@ -13,7 +13,7 @@ use glam::Vec2;
 use super::Terrain;
 use super::plan::{CellPlan, Plans};
 use crate::field2d::event::EventKind;
-use crate::field2d::exec::batch::Block;
+use crate::field2d::exec::batch::{Block, check};
 use crate::field2d::exec::value::clamp;
 use crate::field2d::exec::{Dv, Fv, P2, Val};
 use crate::field2d::grid::{CellState, MaterialSource};
@@ -125,12 +125,7 @@ impl<F: Sdf> Terrain<F> {
 
     /// Distances at `points` into `out`, bit-identical to [`Sdf::distance`] at each point.
     pub fn distances(&self, points: &[Vec2], out: &mut [f32]) -> Result<(), EvalError> {
-        if points.len() != out.len() {
-            return Err(EvalError::LengthMismatch {
-                input: points.len(),
-                output: out.len(),
-            });
-        }
+        check(points.len(), out.len())?;
         let Some(plans) = &self.plans else {
             for (o, &p) in out.iter_mut().zip(points) {
                 *o = self.distance(p);
@@ -140,7 +135,7 @@ impl<F: Sdf> Terrain<F> {
         let (order, groups) = self.group(points);
         for (o, p) in out.iter_mut().zip(points) {
             if p.x.is_nan() || p.y.is_nan() {
-                *o = f32::NAN;
+                *o = self.distance(*p);
             }
         }
         let k = Distances {
@@ -157,12 +152,7 @@ impl<F: Sdf> Terrain<F> {
 
     /// Samples at `points` into `out`, bit-identical to [`Sdf::sample`] at each point.
     pub fn samples(&self, points: &[Vec2], out: &mut [Sample]) -> Result<(), EvalError> {
-        if points.len() != out.len() {
-            return Err(EvalError::LengthMismatch {
-                input: points.len(),
-                output: out.len(),
-            });
-        }
+        check(points.len(), out.len())?;
         let Some(plans) = &self.plans else {
             for (o, &p) in out.iter_mut().zip(points) {
                 *o = self.sample(p);
