@@ -744,3 +744,30 @@ fn prospero_specialized_image_equals_brute_force() {
             .contains("does not divide")
     );
 }
+
+/// Every choice of fusion patterns computes the unfused tape's bits.
+#[test]
+fn every_fusion_subset_is_bit_identical() {
+    use craterfield::field2d::tape::fuse::FuseOptions;
+    let (g, pts) = prospero_subset();
+    let program = g.program();
+    let plain = program.tape(Outputs::Value);
+    let mut want = vec![0.0; pts.len()];
+    plain.distances(&pts, &mut want, Backend::Scalar).unwrap();
+    for bits in 0..8u8 {
+        let o = FuseOptions {
+            hypot: bits & 1 != 0,
+            affine: bits & 2 != 0,
+            chains: bits & 4 != 0,
+        };
+        let tape = program.fuse_with(o).tape(Outputs::Value);
+        assert!(bits == 0 || tape.len() < plain.len(), "{o:?} fused nothing");
+        for b in Backend::available() {
+            let mut got = vec![0.0; pts.len()];
+            tape.distances(&pts, &mut got, b).unwrap();
+            for k in 0..pts.len() {
+                assert!(same(got[k], want[k]), "{o:?} {b} at {}", pts[k]);
+            }
+        }
+    }
+}

@@ -21,9 +21,44 @@ use super::lower::Builder;
 use super::lower::Mat;
 use super::{Instr, MatOut, Op, Program};
 
+/// Which patterns to fuse (all by default; switches exist to measure each one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FuseOptions {
+    /// `sqrt(a*a + b*b)` into `Hypot`.
+    pub hypot: bool,
+    /// `max`/`min` of a negation, a subtraction or an affine term.
+    pub affine: bool,
+    /// Two links of a `max`/`min` chain into one.
+    pub chains: bool,
+}
+
+impl Default for FuseOptions {
+    fn default() -> Self {
+        FuseOptions {
+            hypot: true,
+            affine: true,
+            chains: true,
+        }
+    }
+}
+
+impl FuseOptions {
+    /// No fusion at all.
+    pub const NONE: FuseOptions = FuseOptions {
+        hypot: false,
+        affine: false,
+        chains: false,
+    };
+}
+
 impl Program {
     /// This program with the superinstructions of the module doc.
     pub fn fuse(&self) -> Program {
+        self.fuse_with(FuseOptions::default())
+    }
+
+    /// This program with the chosen superinstructions.
+    pub fn fuse_with(&self, o: FuseOptions) -> Program {
         let mut uses = vec![0u32; self.ops.len()];
         for i in &self.ops {
             for o in i.operands() {
@@ -37,7 +72,7 @@ impl Program {
         let mut b = Builder::rewriting(self.params.clone());
         let mut new = vec![0u32; self.ops.len()];
         for (k, ins) in self.ops.iter().enumerate() {
-            let fused = self.fused(ins, &uses, &b, &new);
+            let fused = self.fused(ins, &uses, &b, &new, o);
             let mut i = fused.unwrap_or(*ins);
             if fused.is_none() {
                 i.map_operands(|o| new[o as usize]);
@@ -52,7 +87,14 @@ impl Program {
     }
 
     /// The superinstruction replacing `ins`, with operands already renamed, if any.
-    fn fused(&self, ins: &Instr, uses: &[u32], b: &Builder, new: &[u32]) -> Option<Instr> {
+    fn fused(
+        &self,
+        ins: &Instr,
+        uses: &[u32],
+        b: &Builder,
+        new: &[u32],
+        o: FuseOptions,
+    ) -> Option<Instr> {
         let at = |id: u32| &self.ops[id as usize];
         let single = |id: u32, op: Op| (at(id).op == op && uses[id as usize] == 1).then(|| at(id));
         let constant = |id: u32| (at(id).op == Op::Const).then(|| at(id).imm);
@@ -66,7 +108,7 @@ impl Program {
             imm,
         };
         match ins.op {
-            Op::Sqrt => {
+            Op::Sqrt if o.hypot => {
                 let add = single(ins.a, Op::Add)?;
                 let (sa, sb) = (at(add.a), at(add.b));
                 (sa.op == Op::Square && sb.op == Op::Square)
@@ -76,7 +118,7 @@ impl Program {
                 let max = ins.op == Op::Max;
                 let pick = |mx: Op, mn: Op| if max { mx } else { mn };
                 let y = at(ins.b);
-                if uses[ins.b as usize] == 1 {
+                if o.affine && uses[ins.b as usize] == 1 {
                     let affine = match y.op {
                         Op::Neg => Some(make(pick(Op::MaxNeg, Op::MinNeg), n(ins.a), n(y.a), 0, 0)),
                         Op::Sub => Some(match (constant(y.a), constant(y.b)) {
@@ -116,7 +158,7 @@ impl Program {
                 // A chain link whose left operand is a plain link read only here: the
                 // inner instruction, as rebuilt, must still be the plain operation.
                 let inner = b.ops.get(n(ins.a) as usize)?;
-                (uses[ins.a as usize] == 1 && inner.op == ins.op)
+                (o.chains && uses[ins.a as usize] == 1 && inner.op == ins.op)
                     .then(|| make(pick(Op::Max3, Op::Min3), inner.a, inner.b, n(ins.b), 0))
             }
             _ => None,
