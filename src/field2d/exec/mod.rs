@@ -1,8 +1,8 @@
 //! The tape interpreter, written once over [`Lanes`] and run on every backend.
 //!
-//! A block of `nb` registers' worth of points (`nb * WIDTH` points) goes through the tape
+//! A block of `NB` lane registers of points (`NB * WIDTH` points) goes through the tape
 //! one instruction at a time: each instruction is decoded once and applied to the whole
-//! block, which spreads the decoding over many lanes. The register file holds `nb` lane
+//! block, which spreads the decoding over many lanes. The register file holds `NB` lane
 //! registers per tape register, as plain values ([`Fv`]) or dual numbers ([`Dv`]). Masks and
 //! integers (repetition indices, materials) are stored as bits in a register's value part.
 

@@ -224,6 +224,17 @@ struct Tile {
     size: usize,
 }
 
+impl Tile {
+    /// The box of the tile's pixel centres.
+    fn bounds(&self, o: &ImageOptions) -> (Vec2, Vec2) {
+        let (last_x, last_y) = (self.x + self.size - 1, self.y + self.size - 1);
+        (
+            o.pixel(self.x as u32, last_y as u32),
+            o.pixel(last_x as u32, self.y as u32),
+        )
+    }
+}
+
 /// Renders `tile` with `program` at tile level `level`; `px` holds the image rows from
 /// `row0` on.
 fn render_tile(
@@ -235,14 +246,11 @@ fn render_tile(
     px: &mut [bool],
     st: &mut ImageStats,
 ) -> Result<(), ImageError> {
-    let (lo, hi) = (
-        o.pixel(tile.x as u32, (tile.y + tile.size - 1) as u32),
-        o.pixel((tile.x + tile.size - 1) as u32, tile.y as u32),
-    );
     if level + 1 == o.tiles.len() {
         // A single tile level: the tiles are the smallest ones, run with the whole tape.
         return leaves(program, o, tile, tile.size, row0, px, st);
     }
+    let (lo, hi) = tile.bounds(o);
     let (spec, bound) = program.specialize_with_bound(lo, hi);
     if let Some(inside) = decided(bound) {
         fill(o, tile, row0, px, inside);
@@ -290,8 +298,7 @@ fn leaves(
                 size: sub,
             };
             if o.leaf_bounds {
-                let lo = o.pixel(t.x as u32, (t.y + sub - 1) as u32);
-                let hi = o.pixel((t.x + sub - 1) as u32, t.y as u32);
+                let (lo, hi) = t.bounds(o);
                 if let Some(inside) = decided(program.bound(lo, hi)) {
                     fill(o, t, row0, px, inside);
                     st.filled_tiles += 1;

@@ -9,7 +9,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use super::{Instr, Kind, MatOut, Op, Program};
+use super::{Instr, MatOut, Op, Program};
 use crate::field2d::detmath::{Dual, Num, nmax, nmin};
 use crate::field2d::graph::{Graph, NodeId, Op as G, Repeat};
 use crate::field2d::node::Axis;
@@ -130,13 +130,6 @@ impl Builder {
             .then_some(())
             .filter(|_| i.b == i.c)
             .map(|_| i.b)
-    }
-
-    #[allow(dead_code)]
-    pub(crate) fn kind(&self, id: u32) -> Kind {
-        self.ops
-            .get(id as usize)
-            .map_or(Kind::Float, |i| i.op.kind())
     }
 
     fn unary(&mut self, op: Op, a: u32) -> u32 {

@@ -125,56 +125,70 @@ impl<F: Sdf> Terrain<F> {
 
     /// Distances at `points` into `out`, bit-identical to [`Sdf::distance`] at each point.
     pub fn distances(&self, points: &[Vec2], out: &mut [f32]) -> Result<(), EvalError> {
-        check(points.len(), out.len())?;
-        let Some(plans) = &self.plans else {
-            for (o, &p) in out.iter_mut().zip(points) {
-                *o = self.distance(p);
-            }
+        let Some((plans, order, groups)) = self.batch(points, out, |p| self.distance(p))? else {
             return Ok(());
         };
-        let (order, groups) = self.group(points);
-        for (o, p) in out.iter_mut().zip(points) {
-            if p.x.is_nan() || p.y.is_nan() {
-                *o = self.distance(*p);
-            }
-        }
-        let k = Distances {
-            t: self,
-            plans,
-            points,
-            order: &order,
-            groups: &groups,
-            out,
-        };
-        simd::run(self.backend, k)?;
+        let (order, groups) = (&order, &groups);
+        let t = self;
+        simd::run(
+            self.backend,
+            Distances {
+                t,
+                plans,
+                points,
+                order,
+                groups,
+                out,
+            },
+        )?;
         Ok(())
     }
 
     /// Samples at `points` into `out`, bit-identical to [`Sdf::sample`] at each point.
     pub fn samples(&self, points: &[Vec2], out: &mut [Sample]) -> Result<(), EvalError> {
+        let Some((plans, order, groups)) = self.batch(points, out, |p| self.sample(p))? else {
+            return Ok(());
+        };
+        let (order, groups) = (&order, &groups);
+        let t = self;
+        simd::run(
+            self.backend,
+            Samples {
+                t,
+                plans,
+                points,
+                order,
+                groups,
+                out,
+            },
+        )?;
+        Ok(())
+    }
+
+    /// What both batch queries do first: check the lengths, answer every point one at a
+    /// time when the base has no tapes (`None`), else answer the NaN points (whose result
+    /// is fixed) and group the rest by cell.
+    #[allow(clippy::type_complexity)]
+    fn batch<T>(
+        &self,
+        points: &[Vec2],
+        out: &mut [T],
+        single: impl Fn(Vec2) -> T,
+    ) -> Result<Option<(&Plans, Vec<u32>, Vec<Group>)>, EvalError> {
         check(points.len(), out.len())?;
         let Some(plans) = &self.plans else {
             for (o, &p) in out.iter_mut().zip(points) {
-                *o = self.sample(p);
+                *o = single(p);
             }
-            return Ok(());
+            return Ok(None);
         };
-        let (order, groups) = self.group(points);
-        for (o, p) in out.iter_mut().zip(points) {
+        for (o, &p) in out.iter_mut().zip(points) {
             if p.x.is_nan() || p.y.is_nan() {
-                *o = self.sample(*p);
+                *o = single(p);
             }
         }
-        let k = Samples {
-            t: self,
-            plans,
-            points,
-            order: &order,
-            groups: &groups,
-            out,
-        };
-        simd::run(self.backend, k)?;
-        Ok(())
+        let (order, groups) = self.group(points);
+        Ok(Some((plans, order, groups)))
     }
 
     fn group(&self, points: &[Vec2]) -> (Vec<u32>, Vec<Group>) {
@@ -222,7 +236,7 @@ impl<F: Sdf> Terrain<F> {
     }
 }
 
-/// Gathers up to `nb * WIDTH` points of a group.
+/// Gathers the points of one block of a group.
 fn gather(points: &[Vec2], idx: &[u32], buf: &mut Vec<Vec2>) {
     buf.clear();
     buf.extend(idx.iter().map(|&i| points[i as usize]));
