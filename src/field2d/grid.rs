@@ -13,6 +13,7 @@ use thiserror::Error;
 
 use super::detmath::{Num, V2, nclamp};
 use super::sdf::MaterialId;
+use super::terrain::journal::{Entry, Journal};
 
 /// Most cells a grid may have, so that memory stays bounded.
 pub const MAX_CELLS: u64 = 4_000_000;
@@ -181,6 +182,8 @@ pub struct Grid {
     bricks: Vec<Brick>,
     free_bricks: Vec<u32>,
     pub(crate) stats: GridStats,
+    /// The undo journal, when rollback is enabled.
+    pub(crate) journal: Option<Journal>,
 }
 
 impl Grid {
@@ -230,6 +233,7 @@ impl Grid {
             bricks: Vec::new(),
             free_bricks: Vec::new(),
             stats: GridStats::default(),
+            journal: None,
         })
     }
 
@@ -359,20 +363,65 @@ impl Grid {
     /// returns its id. Brick count never exceeds the cell count.
     pub(crate) fn store_brick(&mut self, cell: usize, brick: Brick) -> u32 {
         let current = self.cells.get(cell).and_then(|c| c.state.0.brick());
-        let reused = current.and_then(|id| self.bricks.get_mut(id as usize).map(|s| (id, s)));
-        if let Some((id, slot)) = reused {
-            *slot = brick;
-            return id;
+        let slot = current
+            .filter(|&id| (id as usize) < self.bricks.len())
+            .or_else(|| {
+                let freed = self.free_bricks.pop()?;
+                self.record(Entry::FreePopped(freed));
+                Some(freed).filter(|&id| (id as usize) < self.bricks.len())
+            });
+        match slot {
+            Some(id) => {
+                self.replace_brick(id, brick);
+                id
+            }
+            None => {
+                self.bricks.push(brick);
+                self.record(Entry::BrickPushed);
+                (self.bricks.len() - 1) as u32
+            }
         }
-        let freed = self.free_bricks.pop();
-        if let Some((id, slot)) =
-            freed.and_then(|id| self.bricks.get_mut(id as usize).map(|s| (id, s)))
-        {
-            *slot = brick;
-            return id;
+    }
+
+    /// Overwrites brick slot `id`, journaling what it held.
+    fn replace_brick(&mut self, id: u32, brick: Brick) {
+        if let Some(slot) = self.bricks.get_mut(id as usize) {
+            let before = std::mem::replace(slot, brick);
+            if let Some(j) = &mut self.journal {
+                j.push(Entry::Brick { id, before });
+            }
         }
-        self.bricks.push(brick);
-        (self.bricks.len() - 1) as u32
+    }
+
+    /// Records a pre-image when journaling.
+    pub(crate) fn record(&mut self, e: Entry) {
+        if let Some(j) = &mut self.journal {
+            j.push(e);
+        }
+    }
+
+    /// Restores a grid-level pre-image (the terrain undoes its own kinds).
+    pub(crate) fn undo(&mut self, e: Entry) {
+        match e {
+            Entry::Cell { cell, before, .. } => {
+                if let Some(c) = self.cells.get_mut(cell) {
+                    *c = before;
+                }
+            }
+            Entry::Brick { id, before } => {
+                if let Some(slot) = self.bricks.get_mut(id as usize) {
+                    *slot = before;
+                }
+            }
+            Entry::BrickPushed => {
+                self.bricks.pop();
+            }
+            Entry::FreePushed => {
+                self.free_bricks.pop();
+            }
+            Entry::FreePopped(id) => self.free_bricks.push(id),
+            Entry::Event | Entry::Tick(_) => {}
+        }
     }
 
     /// Sets the state of `cell`, freeing a brick it no longer references.
@@ -383,11 +432,10 @@ impl Grid {
         let old = c.state.0.brick();
         c.state = CellStateSlot(state);
         let dropped = old.filter(|&id| state.brick() != Some(id));
-        if let Some((id, b)) =
-            dropped.and_then(|id| self.bricks.get_mut(id as usize).map(|b| (id, b)))
-        {
-            *b = Brick::default();
+        if let Some(id) = dropped.filter(|&id| (id as usize) < self.bricks.len()) {
+            self.replace_brick(id, Brick::default());
             self.free_bricks.push(id);
+            self.record(Entry::FreePushed);
         }
     }
 

@@ -69,6 +69,7 @@
 //! one brick, so brick memory is bounded by the cell count times `(n+1)^2` samples.
 
 mod batch;
+pub(crate) mod journal;
 mod plan;
 
 use std::collections::BTreeSet;
@@ -84,6 +85,8 @@ use super::grid::{self, Brick, CellState, Grid, GridError, GridStats, MaterialSo
 use super::quant::FIXED_ONE;
 use super::sdf::{MaterialId, Sample, Sdf};
 use super::simd::Backend;
+use journal::{Entry, Journal};
+pub use journal::{RollbackError, TerrainMark};
 use plan::{CellPlan, Plans};
 
 /// Largest accepted world coordinate magnitude (bounds, and so event centres).
@@ -538,6 +541,7 @@ impl<F: Sdf> Terrain<F> {
         self.validate_event(&e)?;
         let idx = self.events.len() as u32;
         self.events.push(e);
+        self.grid.record(Entry::Event);
         self.insert(idx);
         Ok(())
     }
@@ -549,17 +553,105 @@ impl<F: Sdf> Terrain<F> {
             self.tick = tick;
             self.rebuild();
         } else if tick > self.tick {
+            self.grid.record(Entry::Tick(self.tick));
             self.tick = tick;
-            let pending: Vec<usize> = std::mem::take(&mut self.over_cap).into_iter().collect();
+            let pending: Vec<usize> = self.over_cap.iter().copied().collect();
             for cell in pending {
+                self.record_cell(cell);
+                self.over_cap.remove(&cell);
                 self.compact(cell);
             }
+        }
+    }
+
+    /// Starts keeping an undo journal, so that [`Terrain::mark`] and [`Terrain::rollback`]
+    /// work. Each change then also stores what it overwrote (a few cells per event), until
+    /// [`Terrain::forget_before`] drops it.
+    pub fn enable_rollback(&mut self) {
+        if self.grid.journal.is_none() {
+            self.grid.journal = Some(Journal::default());
+        }
+    }
+
+    /// The current position in the terrain's history, if rollback is enabled.
+    pub fn mark(&self) -> Option<TerrainMark> {
+        let j = self.grid.journal.as_ref()?;
+        Some(j.mark(self.grid.stats, self.events.len() as u32))
+    }
+
+    /// Returns to `mark`: events applied and tick changes made since are undone, in
+    /// reverse. Costs the number of changes since the mark (a few cells per event), not the
+    /// size of the terrain. On error nothing changes.
+    ///
+    /// A rebuild (moving the tick backwards with [`Terrain::set_tick`]) forgets the history.
+    pub fn rollback(&mut self, mark: &TerrainMark) -> Result<(), RollbackError> {
+        let journal = self.grid.journal.as_mut().ok_or(RollbackError::Disabled)?;
+        journal.check(mark)?;
+        while let Some(entry) = self
+            .grid
+            .journal
+            .as_mut()
+            .and_then(|j| j.pop_after(mark.pos()))
+        {
+            self.undo(entry);
+        }
+        self.grid.stats = Journal::stats_of(mark);
+        Ok(())
+    }
+
+    /// Forgets the history before `mark` (older marks can no longer be rolled back to),
+    /// bounding the journal's memory.
+    pub fn forget_before(&mut self, mark: &TerrainMark) {
+        if let Some(j) = &mut self.grid.journal {
+            j.forget_before(mark);
+        }
+    }
+
+    /// Journal entries kept (0 when rollback is off).
+    pub fn journal_len(&self) -> usize {
+        self.grid.journal.as_ref().map_or(0, Journal::len)
+    }
+
+    /// Records `cell`'s pre-image before a change.
+    fn record_cell(&mut self, cell: usize) {
+        if self.grid.journal.is_none() {
+            return;
+        }
+        if let Some(c) = self.grid.cells.get(cell) {
+            let entry = Entry::Cell {
+                cell,
+                before: c.clone(),
+                over_cap: self.over_cap.contains(&cell),
+            };
+            self.grid.record(entry);
+        }
+    }
+
+    /// Restores one pre-image.
+    fn undo(&mut self, entry: Entry) {
+        match entry {
+            Entry::Event => {
+                self.events.pop();
+            }
+            Entry::Tick(t) => self.tick = t,
+            Entry::Cell { cell, over_cap, .. } => {
+                if over_cap {
+                    self.over_cap.insert(cell);
+                } else {
+                    self.over_cap.remove(&cell);
+                }
+                self.grid.undo(entry);
+            }
+            other => self.grid.undo(other),
         }
     }
 
     /// Rebuilds the grid by replaying every event at the current tick.
     fn rebuild(&mut self) {
         self.grid.clear();
+        if let Some(j) = &mut self.grid.journal {
+            j.reset();
+        }
         self.over_cap.clear();
         for idx in 0..self.events.len() as u32 {
             self.insert(idx);
@@ -576,6 +668,7 @@ impl<F: Sdf> Terrain<F> {
         let extent = event_extent(&e) + band;
         let reach = fixed_f64(e.radius) + fixed_f64(e.rim) + band;
         for cell in self.grid.cells_touching(center, reach, extent) {
+            self.record_cell(cell);
             if let Some(c) = self.grid.cells.get_mut(cell) {
                 c.events.push(idx);
             }

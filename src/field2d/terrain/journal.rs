@@ -1,0 +1,176 @@
+//! The undo journal: what each change of a terrain overwrote, so that rolling back to a
+//! mark costs what changed since the mark, never the whole terrain.
+//!
+//! The event log is append-only and the grid's cells change only when an event is
+//! inserted or a tick change bakes a list, so every change is recorded as the pre-image of
+//! what it touched: a cell (its state, list and over-cap flag), a brick slot, one step of
+//! the brick free list, an appended event, or the previous tick. Undoing the entries in
+//! reverse restores the exact bytes, bricks included, so a re-simulation after a rollback
+//! produces the same bits as a run that never rolled back.
+
+use std::collections::VecDeque;
+
+use thiserror::Error;
+
+use crate::field2d::grid::{Brick, Cell, GridStats};
+
+/// One pre-image.
+#[derive(Clone, Debug)]
+pub(crate) enum Entry {
+    /// A cell before a change, and whether it was over its cap then.
+    Cell {
+        cell: usize,
+        before: Cell,
+        over_cap: bool,
+    },
+    /// A brick slot before it was overwritten.
+    Brick { id: u32, before: Brick },
+    /// A brick slot was appended.
+    BrickPushed,
+    /// An id was pushed onto the free list.
+    FreePushed,
+    /// This id was popped off the free list.
+    FreePopped(u32),
+    /// An event was appended to the log.
+    Event,
+    /// The tick before a tick change.
+    Tick(u32),
+}
+
+/// A position in a terrain's history that [`crate::field2d::Terrain::rollback`] can return
+/// to. Cheap to copy; taking one costs nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TerrainMark {
+    /// Journal entries recorded before the mark (counted from the journal's start).
+    pos: u64,
+    /// Serial number of the entry just before the mark (0 when there is none), to tell a
+    /// mark on this timeline from one whose future was rolled back and rewritten.
+    serial: u64,
+    /// The grid's counters at the mark.
+    stats: GridStats,
+    /// Events in the log at the mark.
+    events: u32,
+}
+
+impl TerrainMark {
+    /// The journal position.
+    pub(crate) fn pos(&self) -> u64 {
+        self.pos
+    }
+
+    /// Events in the log at the mark.
+    pub fn events(&self) -> u32 {
+        self.events
+    }
+}
+
+/// Why a rollback was refused (the terrain is unchanged).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Error)]
+#[non_exhaustive]
+pub enum RollbackError {
+    /// Journaling is off (see [`crate::field2d::Terrain::enable_rollback`]).
+    #[error("rollback is not enabled on this terrain")]
+    Disabled,
+    /// The history back to the mark was already forgotten (or reset by a rebuild).
+    #[error(
+        "the mark is older than the kept history (mark at entry {mark}, history starts at entry {kept})"
+    )]
+    TooOld {
+        /// The mark's journal position.
+        mark: u64,
+        /// The oldest position still kept.
+        kept: u64,
+    },
+    /// The mark belongs to a future that was rolled back and replaced.
+    #[error("the mark is not on the terrain's current timeline (journal entry {mark})")]
+    NotOnTimeline {
+        /// The mark's journal position.
+        mark: u64,
+    },
+}
+
+/// The journal: entries with serial numbers, the oldest ones forgettable.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Journal {
+    entries: VecDeque<(u64, Entry)>,
+    /// Entries forgotten from the front: the position of `entries[0]`.
+    start: u64,
+    /// Serial number of the last entry ever recorded (never reused).
+    last_serial: u64,
+}
+
+impl Journal {
+    /// Records an entry.
+    pub(crate) fn push(&mut self, e: Entry) {
+        self.last_serial += 1;
+        self.entries.push_back((self.last_serial, e));
+    }
+
+    /// Position after the last entry.
+    fn end(&self) -> u64 {
+        self.start + self.entries.len() as u64
+    }
+
+    /// A mark at the current end.
+    pub(crate) fn mark(&self, stats: GridStats, events: u32) -> TerrainMark {
+        TerrainMark {
+            pos: self.end(),
+            serial: self.entries.back().map_or(0, |e| e.0),
+            stats,
+            events,
+        }
+    }
+
+    /// Whether `m` can be returned to.
+    pub(crate) fn check(&self, m: &TerrainMark) -> Result<(), RollbackError> {
+        if m.pos < self.start {
+            return Err(RollbackError::TooOld {
+                mark: m.pos,
+                kept: self.start,
+            });
+        }
+        if m.pos > self.end() {
+            return Err(RollbackError::NotOnTimeline { mark: m.pos });
+        }
+        if m.pos > self.start {
+            let before = self.entries.get((m.pos - self.start - 1) as usize);
+            if before.map(|e| e.0) != Some(m.serial) {
+                return Err(RollbackError::NotOnTimeline { mark: m.pos });
+            }
+        }
+        Ok(())
+    }
+
+    /// Takes the newest entry if it is after `pos`.
+    pub(crate) fn pop_after(&mut self, pos: u64) -> Option<Entry> {
+        if self.end() > pos {
+            self.entries.pop_back().map(|e| e.1)
+        } else {
+            None
+        }
+    }
+
+    /// The counters to restore for `m`.
+    pub(crate) fn stats_of(m: &TerrainMark) -> GridStats {
+        m.stats
+    }
+
+    /// Forgets the entries before `m` (marks older than it become [`RollbackError::TooOld`]).
+    pub(crate) fn forget_before(&mut self, m: &TerrainMark) {
+        while self.start < m.pos && !self.entries.is_empty() {
+            self.entries.pop_front();
+            self.start += 1;
+        }
+    }
+
+    /// Forgets everything (after a rebuild, which rewrites the whole grid).
+    pub(crate) fn reset(&mut self) {
+        self.start = self.end();
+        self.entries.clear();
+    }
+
+    /// Entries kept.
+    pub(crate) fn len(&self) -> usize {
+        self.entries.len()
+    }
+}
