@@ -6,8 +6,10 @@
 #![warn(missing_docs)]
 
 pub mod field2d;
+pub mod net;
 #[cfg(feature = "raster")]
 pub mod render2d;
+pub mod sim;
 
 /// The README's code examples, compiled and run as doctests.
 #[doc = include_str!("../README.md")]

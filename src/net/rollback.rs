@@ -1,0 +1,281 @@
+//! Rollback netcode: the simulation as a [GGRS](ggrs) game.
+//!
+//! GGRS runs a match as a sequence of frames and asks the game, through
+//! [`GgrsRequest`]s, to save the state of a frame, to load a saved one, and to advance by
+//! one frame with a given set of inputs. The simulation maps onto that one to one:
+//!
+//! | GGRS | simulation |
+//! |---|---|
+//! | frame `f` | the world at tick `f` (a session starts on a fresh [`World`], tick 0) |
+//! | `Config::Input` | [`Input`], one per player and tick (a peer's invalid input acts as no input: the simulation sanitizes every input) |
+//! | `Config::State` | [`Snapshot`] from [`World::snapshot`] |
+//! | `SaveGameState` | [`World::snapshot`], with [`World::state_hash`] as the checksum |
+//! | `LoadGameState` | [`World::restore`] |
+//! | `AdvanceFrame` | [`World::step`], a disconnected player's input being [`Input::default`] |
+//!
+//! [`handle_requests`] fulfils a batch of requests in order, checking that the world's
+//! tick is the frame GGRS names for every save and load: a skipped or reordered request is
+//! an error rather than a silent desync.
+//!
+//! Inputs are predicted with [`ggrs::PredictRepeatLast`]: [`Input`] holds the state of
+//! the controls (buttons act on the tick they go down, so a held button repeats nothing),
+//! which is what repeating the last input predicts best.
+//!
+//! The checksum GGRS compares between peers (desync detection) and across rollbacks (the
+//! sync test) is the world's 64-bit state hash: the tick, every body (vehicles with their
+//! controls' state, projectiles, debris) and the terrain's event log, the same on every
+//! machine.
+//!
+//! GGRS loads states at most its prediction window back (`max_prediction`, 8 frames
+//! unless the session builder sets another), and the world restores snapshots up to
+//! [`Settings::rollback_ticks`](crate::sim::Settings::rollback_ticks) back (128 by
+//! default); the prediction window must stay below the latter.
+
+use std::net::SocketAddr;
+
+use ggrs::{Frame, GgrsError, GgrsRequest, InputStatus};
+use thiserror::Error;
+
+use crate::sim::{Input, MAX_PLAYERS, SimError, Snapshot, World};
+
+/// The GGRS parameters of a match: the simulation's [`Input`] and [`Snapshot`], peers
+/// addressed by UDP socket address.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct GgrsConfig;
+
+impl ggrs::Config for GgrsConfig {
+    type Input = Input;
+    type InputPredictor = ggrs::PredictRepeatLast;
+    type State = Snapshot;
+    type Address = SocketAddr;
+}
+
+/// A GGRS request for the simulation.
+pub type Request = GgrsRequest<GgrsConfig>;
+
+/// A peer-to-peer GGRS session of the simulation.
+pub type P2PSession = ggrs::P2PSession<GgrsConfig>;
+
+/// A GGRS sync-test session of the simulation (rolls back every frame and compares
+/// checksums: a local determinism check).
+pub type SyncTestSession = ggrs::SyncTestSession<GgrsConfig>;
+
+/// A GGRS session builder for the simulation.
+pub type SessionBuilder = ggrs::SessionBuilder<GgrsConfig>;
+
+/// Why a GGRS request could not be fulfilled (or, for [`RollbackError::Ggrs`], why a
+/// session call failed).
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum RollbackError {
+    /// GGRS asked to load a frame whose cell holds no state.
+    #[error("GGRS asked to load frame {frame}, but no state was saved for it")]
+    EmptyState {
+        /// The frame GGRS named.
+        frame: Frame,
+    },
+    /// The world is not at the tick GGRS expects (a request was skipped, reordered or
+    /// fulfilled on another world, or the session did not start on a fresh world).
+    #[error("GGRS request for frame {frame}, but the world is at tick {tick}")]
+    FrameMismatch {
+        /// The frame GGRS named.
+        frame: Frame,
+        /// The world's tick.
+        tick: u32,
+    },
+    /// GGRS passed inputs for more players than a match can have.
+    #[error("GGRS passed inputs for {count} players (at most {MAX_PLAYERS})")]
+    TooManyPlayers {
+        /// The number of inputs.
+        count: usize,
+    },
+    /// The simulation rejected a step or a restore.
+    #[error(transparent)]
+    Sim(#[from] SimError),
+    /// A GGRS session call failed.
+    #[error("GGRS: {0}")]
+    Ggrs(#[from] GgrsError),
+}
+
+/// The checksum GGRS stores with a saved state: the world's state hash.
+pub fn checksum(world: &World) -> u128 {
+    u128::from(world.state_hash())
+}
+
+fn check_frame(world: &World, frame: Frame) -> Result<(), RollbackError> {
+    if i64::from(world.tick()) == i64::from(frame) {
+        Ok(())
+    } else {
+        Err(RollbackError::FrameMismatch {
+            frame,
+            tick: world.tick(),
+        })
+    }
+}
+
+/// Fulfils one GGRS request on `world`.
+///
+/// * `SaveGameState`: stores a [`Snapshot`] and the [`checksum`] in the cell.
+/// * `LoadGameState`: restores the cell's snapshot.
+/// * `AdvanceFrame`: steps the world once with the given inputs; a disconnected player's
+///   input is [`Input::default`] whatever GGRS passed.
+///
+/// Saves and loads check that the world is at the tick GGRS names.
+pub fn handle_request(world: &mut World, request: Request) -> Result<(), RollbackError> {
+    match request {
+        GgrsRequest::SaveGameState { cell, frame } => {
+            check_frame(world, frame)?;
+            cell.save(frame, Some(world.snapshot()), Some(checksum(world)));
+        }
+        GgrsRequest::LoadGameState { cell, frame } => {
+            {
+                let snapshot = cell.data().ok_or(RollbackError::EmptyState { frame })?;
+                world.restore(&snapshot)?;
+            }
+            check_frame(world, frame)?;
+        }
+        GgrsRequest::AdvanceFrame { inputs } => {
+            if inputs.len() > MAX_PLAYERS {
+                return Err(RollbackError::TooManyPlayers {
+                    count: inputs.len(),
+                });
+            }
+            let mut step = [Input::default(); MAX_PLAYERS];
+            for (slot, &(input, status)) in step.iter_mut().zip(&inputs) {
+                *slot = match status {
+                    InputStatus::Disconnected => Input::default(),
+                    InputStatus::Confirmed | InputStatus::Predicted => input,
+                };
+            }
+            world.step(&step[..inputs.len()])?;
+        }
+    }
+    Ok(())
+}
+
+/// Fulfils GGRS requests on `world`, in order (as GGRS requires), stopping at the first
+/// that fails. See [`handle_request`].
+pub fn handle_requests(world: &mut World, requests: Vec<Request>) -> Result<(), RollbackError> {
+    for request in requests {
+        handle_request(world, request)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::field2d::Level;
+    use crate::sim::Settings;
+    use crate::sim::input::buttons;
+    use ggrs::GameStateCell;
+
+    fn world(players: usize) -> World {
+        World::new(&Level::default_level(), Settings::default(), players).unwrap()
+    }
+
+    fn advance(inputs: &[(Input, InputStatus)]) -> Request {
+        GgrsRequest::AdvanceFrame {
+            inputs: inputs.to_vec(),
+        }
+    }
+
+    #[test]
+    fn save_advance_load_returns_to_the_saved_state() {
+        let mut w = world(2);
+        let fire = Input {
+            aim: Input::aim_from_degrees(60.0),
+            buttons: buttons::FIRE,
+            drive: 40,
+            power: 200,
+            weapon: 0,
+        };
+        let cell = GameStateCell::<Snapshot>::default();
+        handle_requests(
+            &mut w,
+            vec![
+                advance(&[(Input::default(), InputStatus::Confirmed); 2]),
+                GgrsRequest::SaveGameState {
+                    cell: cell.clone(),
+                    frame: 1,
+                },
+            ],
+        )
+        .unwrap();
+        let saved = (w.tick(), w.state_hash());
+        for _ in 0..5 {
+            handle_request(
+                &mut w,
+                advance(&[
+                    (fire, InputStatus::Predicted),
+                    (Input::default(), InputStatus::Confirmed),
+                ]),
+            )
+            .unwrap();
+        }
+        assert_eq!(w.tick(), 6);
+        handle_request(
+            &mut w,
+            GgrsRequest::LoadGameState {
+                cell: cell.clone(),
+                frame: 1,
+            },
+        )
+        .unwrap();
+        assert_eq!((w.tick(), w.state_hash()), saved);
+        assert_eq!(cell.load().map(|_| ()), Some(()));
+    }
+
+    #[test]
+    fn disconnected_players_do_nothing() {
+        let fire = Input {
+            aim: Input::aim_from_degrees(45.0),
+            buttons: buttons::FIRE,
+            drive: 100,
+            power: 255,
+            weapon: 1,
+        };
+        let mut a = world(2);
+        let mut b = world(2);
+        for _ in 0..20 {
+            handle_request(
+                &mut a,
+                advance(&[
+                    (fire, InputStatus::Confirmed),
+                    (fire, InputStatus::Disconnected),
+                ]),
+            )
+            .unwrap();
+            b.step(&[fire, Input::default()]).unwrap();
+        }
+        assert_eq!(a.state_hash(), b.state_hash());
+    }
+
+    #[test]
+    fn bad_requests_are_errors() {
+        let mut w = world(2);
+        let cell = GameStateCell::<Snapshot>::default();
+        let err = handle_request(
+            &mut w,
+            GgrsRequest::SaveGameState {
+                cell: cell.clone(),
+                frame: 3,
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(
+            err,
+            RollbackError::FrameMismatch { frame: 3, tick: 0 }
+        ));
+        // GGRS stamps a cell's frame when it is saved; a fresh cell holds nothing.
+        let err =
+            handle_request(&mut w, GgrsRequest::LoadGameState { cell, frame: 0 }).unwrap_err();
+        assert!(matches!(err, RollbackError::EmptyState { frame: 0 }));
+        let err = handle_request(
+            &mut w,
+            advance(&[(Input::default(), InputStatus::Confirmed); MAX_PLAYERS + 1]),
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("players"), "{err}");
+    }
+}

@@ -1,0 +1,212 @@
+//! Body-body contacts: a sorted uniform-grid broadphase and segment-segment narrowphase
+//! (circles are segments of length zero), resolved with a position split by inverse mass
+//! and a normal impulse with restitution and friction.
+//!
+//! Pairs are found and resolved in a fixed order (ascending index pairs), so the result
+//! does not depend on hashing or threads.
+
+use glam::Vec2;
+
+use crate::field2d::detmath::{clamp, max, min};
+
+use super::body::Body;
+
+/// Fraction of the overlap removed per tick.
+const PUSH_APART: f32 = 0.5;
+
+/// A pair of overlapping bodies, by index, with the contact normal (from `a` to `b`) and
+/// the overlap depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overlap {
+    /// First body (lower index).
+    pub a: usize,
+    /// Second body.
+    pub b: usize,
+    /// Unit normal from `a` towards `b`.
+    pub normal: Vec2,
+    /// How far they overlap.
+    pub depth: f32,
+}
+
+/// A reusable broadphase: cell keys sorted with body indices.
+#[derive(Clone, Debug, Default)]
+pub struct Broadphase {
+    keys: Vec<(u64, u32)>,
+}
+
+fn cell_of(p: Vec2, inv: f32) -> (i32, i32) {
+    // Saturating casts: far-away bodies share the edge cells, which is only slower.
+    ((p.x * inv).floor() as i32, (p.y * inv).floor() as i32)
+}
+
+fn key(cx: i32, cy: i32) -> u64 {
+    (u64::from(cx as u32) << 32) | u64::from(cy as u32)
+}
+
+impl Broadphase {
+    /// Every overlapping pair, in ascending `(a, b)` order, into `out`.
+    pub fn overlaps(&mut self, bodies: &[Body], out: &mut Vec<Overlap>) {
+        out.clear();
+        let reach = bodies.iter().map(Body::bounding_radius).fold(0.0, max);
+        if bodies.len() < 2 || reach <= 0.0 {
+            return;
+        }
+        let size = 2.0 * reach;
+        let inv = 1.0 / size;
+        self.keys.clear();
+        self.keys.extend(bodies.iter().enumerate().map(|(i, b)| {
+            let (cx, cy) = cell_of(b.pos, inv);
+            (key(cx, cy), i as u32)
+        }));
+        self.keys.sort_unstable();
+        for (i, body) in bodies.iter().enumerate() {
+            let (cx, cy) = cell_of(body.pos, inv);
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let k = key(cx.saturating_add(dx), cy.saturating_add(dy));
+                    let start = self.keys.partition_point(|e| e.0 < k);
+                    for &(kk, j) in &self.keys[start..] {
+                        if kk != k {
+                            break;
+                        }
+                        let j = j as usize;
+                        if j <= i {
+                            continue;
+                        }
+                        if let Some(o) = overlap(body, &bodies[j]) {
+                            out.push(Overlap { a: i, b: j, ..o });
+                        }
+                    }
+                }
+            }
+        }
+        out.sort_unstable_by_key(|o| (o.a, o.b));
+    }
+}
+
+/// Closest points of segments `p0-p1` and `q0-q1`.
+pub fn closest_points(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> (Vec2, Vec2) {
+    let d1 = p1 - p0;
+    let d2 = q1 - q0;
+    let r = p0 - q0;
+    let a = d1.x * d1.x + d1.y * d1.y;
+    let e = d2.x * d2.x + d2.y * d2.y;
+    let f = d2.x * r.x + d2.y * r.y;
+    let (s, t);
+    if a <= 1e-12 && e <= 1e-12 {
+        return (p0, q0);
+    }
+    if a <= 1e-12 {
+        s = 0.0;
+        t = clamp(f / e, 0.0, 1.0);
+    } else {
+        let c = d1.x * r.x + d1.y * r.y;
+        if e <= 1e-12 {
+            t = 0.0;
+            s = clamp(-c / a, 0.0, 1.0);
+        } else {
+            let b = d1.x * d2.x + d1.y * d2.y;
+            let denom = a * e - b * b;
+            let s0 = if denom > 1e-12 {
+                clamp((b * f - c * e) / denom, 0.0, 1.0)
+            } else {
+                0.0
+            };
+            let t0 = (b * s0 + f) / e;
+            if t0 < 0.0 {
+                t = 0.0;
+                s = clamp(-c / a, 0.0, 1.0);
+            } else if t0 > 1.0 {
+                t = 1.0;
+                s = clamp((b - c) / a, 0.0, 1.0);
+            } else {
+                t = t0;
+                s = s0;
+            }
+        }
+    }
+    (p0 + d1 * s, q0 + d2 * t)
+}
+
+/// The overlap of two bodies, if any (indices left 0).
+pub fn overlap(a: &Body, b: &Body) -> Option<Overlap> {
+    let (a0, a1) = a.segment();
+    let (b0, b1) = b.segment();
+    let (pa, pb) = closest_points(a0, a1, b0, b1);
+    let d = pb - pa;
+    let dist2 = d.x * d.x + d.y * d.y;
+    let reach = a.radius + b.radius;
+    let overlapping = dist2 < reach * reach;
+    if !overlapping {
+        return None;
+    }
+    let dist = dist2.sqrt();
+    let normal = if dist > 1e-6 {
+        Vec2::new(d.x / dist, d.y / dist)
+    } else {
+        Vec2::Y
+    };
+    Some(Overlap {
+        a: 0,
+        b: 0,
+        normal,
+        depth: reach - dist,
+    })
+}
+
+/// Pushes an overlapping pair apart and removes their approach velocity (with
+/// restitution and friction), split by inverse mass.
+pub fn resolve(a: &mut Body, b: &mut Body, o: &Overlap) {
+    let total = a.inv_mass + b.inv_mass;
+    if total <= 0.0 {
+        return;
+    }
+    let n = o.normal;
+    let push = o.depth * PUSH_APART / total;
+    a.pos -= n * (push * a.inv_mass);
+    b.pos += n * (push * b.inv_mass);
+    let rel = b.vel - a.vel;
+    let vn = rel.x * n.x + rel.y * n.y;
+    if vn >= 0.0 {
+        return;
+    }
+    let e = min(a.restitution, b.restitution);
+    let j = -(1.0 + e) * vn / total;
+    let t = Vec2::new(n.y, -n.x);
+    let vt = rel.x * t.x + rel.y * t.y;
+    let mu = (a.friction * b.friction).sqrt();
+    let jt = clamp(-vt / total, -mu * j, mu * j);
+    let impulse = n * j + t * jt;
+    a.vel -= impulse * a.inv_mass;
+    b.vel += impulse * b.inv_mass;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn closest_points_of_segments() {
+        let (p, q) = closest_points(
+            Vec2::new(0.0, 0.0),
+            Vec2::new(10.0, 0.0),
+            Vec2::new(5.0, 3.0),
+            Vec2::new(5.0, 8.0),
+        );
+        assert_eq!((p, q), (Vec2::new(5.0, 0.0), Vec2::new(5.0, 3.0)));
+        let (p, q) = closest_points(
+            Vec2::ZERO,
+            Vec2::ZERO,
+            Vec2::new(-2.0, 1.0),
+            Vec2::new(2.0, 1.0),
+        );
+        assert_eq!((p, q), (Vec2::ZERO, Vec2::new(0.0, 1.0)));
+        let (p, q) = closest_points(
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(3.0, 0.0),
+            Vec2::new(4.0, 0.0),
+        );
+        assert_eq!((p, q), (Vec2::new(1.0, 0.0), Vec2::new(3.0, 0.0)));
+    }
+}

@@ -1,0 +1,25 @@
+//! Deterministic physics on the terrain field: vehicles, projectiles and debris, explosions
+//! that carve and fill, snapshots for rollback and a per-tick state hash.
+//!
+//! Every peer of a match steps its own [`World`] with the same [`Input`]s and gets the same
+//! bits (DESIGN.md, the determinism contract): the world uses only exactly rounded `f32`
+//! operations in a fixed order, its settings and inputs are integers, its terrain events are
+//! fixed point, and every field query goes through the terrain's batch evaluator, whose
+//! backends all agree bit for bit. [`World::state_hash`] summarises a tick in 64 bits for
+//! desync checks; [`World::snapshot`] and [`World::restore`] cost O(bodies + terrain changes
+//! since the snapshot), never O(terrain).
+
+pub mod body;
+pub mod collide;
+pub mod contact;
+pub mod hash;
+pub mod input;
+pub mod projectile;
+pub mod settings;
+pub mod world;
+
+pub use body::{Body, BodyKind};
+pub use hash::StateHasher;
+pub use input::{Input, InputError, buttons};
+pub use settings::{Settings, SettingsError, VehicleSettings, WeaponSettings};
+pub use world::{EVENT_CENTER_STEP, MAX_PLAYERS, SimError, Snapshot, World, level_hash};
