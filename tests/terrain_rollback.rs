@@ -96,8 +96,8 @@ fn terrain() -> Terrain<craterfield::field2d::Graph> {
 
 #[test]
 fn rollback_then_replay_matches_a_straight_run() {
-    for seed in 0..6u64 {
-        let steps = script(seed, 400);
+    for seed in 0..3u64 {
+        let steps = script(seed, 300);
         let mut straight = terrain();
         run(&mut straight, &steps);
         assert!(straight.stats().bakes > 0, "the script must bake bricks");

@@ -502,13 +502,23 @@ fn decode_hashes(r: &mut Reader<'_>, ticks: u32) -> Result<Vec<(u32, u64)>, Deco
 
 /// Records a match as it is played, producing a [`Replay`].
 ///
-/// ```ignore
+/// ```
+/// use craterfield::field2d::Level;
+/// use craterfield::net::Recorder;
+/// use craterfield::sim::{Input, Settings, World, level_hash};
+///
+/// let level = Level::default_level();
+/// let settings = Settings::default();
+/// let mut world = World::new(&level, settings, 2)?;
 /// let mut rec = Recorder::new(level_hash(&level), settings, 2, 60);
-/// for inputs in match_inputs {
+/// for tick in 0..90 {
+///     let inputs = [Input { drive: 100, ..Input::default() }, Input::default()];
 ///     world.step(&inputs)?;
 ///     rec.record(&inputs, world.tick(), world.state_hash());
 /// }
 /// let replay = rec.finish(world.tick(), world.state_hash());
+/// assert_eq!(replay.ticks(), 90);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct Recorder {

@@ -39,8 +39,10 @@ fn cell_of(p: Vec2, inv: f32) -> (i32, i32) {
     ((p.x * inv).floor() as i32, (p.y * inv).floor() as i32)
 }
 
+/// Column-major cell key, ordered like the signed coordinates (sign bits flipped).
 fn key(cx: i32, cy: i32) -> u64 {
-    (u64::from(cx as u32) << 32) | u64::from(cy as u32)
+    let order = |v: i32| u64::from(v as u32 ^ 0x8000_0000);
+    (order(cx) << 32) | order(cy)
 }
 
 impl Broadphase {
@@ -61,27 +63,35 @@ impl Broadphase {
         self.keys.sort_unstable();
         for (i, body) in bodies.iter().enumerate() {
             let (cx, cy) = cell_of(body.pos, inv);
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    let k = key(cx.saturating_add(dx), cy.saturating_add(dy));
-                    let start = self.keys.partition_point(|e| e.0 < k);
-                    for &(kk, j) in &self.keys[start..] {
-                        if kk != k {
-                            break;
-                        }
-                        let j = j as usize;
-                        if j <= i {
-                            continue;
-                        }
-                        if let Some(o) = overlap(body, &bodies[j]) {
-                            out.push(Overlap { a: i, b: j, ..o });
-                        }
+            // Keys sort by column, then row: a column's three rows are one run.
+            for dx in -1..=1 {
+                let column = cx.saturating_add(dx);
+                let lo = key(column, cy.saturating_sub(1));
+                let hi = key(column, cy.saturating_add(1));
+                let start = self.keys.partition_point(|e| e.0 < lo);
+                for &(k, j) in &self.keys[start..] {
+                    if k > hi {
+                        break;
+                    }
+                    let j = j as usize;
+                    if j <= i || !near(body, &bodies[j]) {
+                        continue;
+                    }
+                    if let Some(o) = overlap(body, &bodies[j]) {
+                        out.push(Overlap { a: i, b: j, ..o });
                     }
                 }
             }
         }
         out.sort_unstable_by_key(|o| (o.a, o.b));
     }
+}
+
+/// Whether the bodies' bounding discs overlap (the cheap test before the exact one).
+fn near(a: &Body, b: &Body) -> bool {
+    let d = b.pos - a.pos;
+    let reach = a.bounding_radius() + b.bounding_radius();
+    d.x * d.x + d.y * d.y < reach * reach
 }
 
 /// Closest points of segments `p0-p1` and `q0-q1`.
