@@ -245,3 +245,29 @@ fn impulses_fall_off_with_distance_and_damage_kills() {
             .contains("weapon 7")
     );
 }
+
+#[test]
+fn a_body_buried_deep_in_the_terrain_climbs_out_instead_of_falling_through() {
+    use craterfield::field2d::Sdf;
+    let lvl = level(
+        "HalfPlane(point: (0.0, 600.0), normal: (0.0, 1.0))",
+        "(100.0, 620.0)",
+    );
+    let mut w = World::new(&lvl, Settings::default(), 1).unwrap();
+    // 300 units under the surface: far beyond the band, where the gradient is zero.
+    let id = w.add_debris(Vec2::new(1000.0, 300.0), 4.0).unwrap();
+    for _ in 0..240 {
+        w.step(&idle(1)).unwrap();
+    }
+    let b = w
+        .bodies()
+        .iter()
+        .find(|b| b.id == id)
+        .expect("still in the world");
+    assert!(b.pos.y > 595.0, "climbed out: {}", b.pos);
+    assert!(
+        w.terrain().distance(b.pos) > 3.5,
+        "resting on the surface: {}",
+        b.pos
+    );
+}

@@ -75,7 +75,11 @@ pub fn solve(b: &mut Body, samples: &[Sample], lipschitz: f32, dt: f32) {
     let margin = speed * dt + GROUND_RANGE;
     for (slot, s) in contacts.iter_mut().zip(samples) {
         let gap = s.distance / lipschitz - b.radius;
-        let Some(normal) = normal_of(s) else {
+        // Deep inside the terrain (beyond the band, where the field is a clamped constant)
+        // the gradient vanishes: push the body up, towards where the surface usually is,
+        // rather than let it fall through.
+        let escape = (gap < 0.0).then_some(Vec2::Y);
+        let Some(normal) = normal_of(s).or(escape) else {
             clearance = min(clearance, gap);
             continue;
         };
