@@ -9,6 +9,9 @@
 //! `FINAL <tick> <hash>` (the state hash at tick `<tick>` once every input before it is
 //! confirmed), `STATS ...`, and `DESYNC ...` for every desync GGRS reports.
 
+mod common;
+use common::splitmix64;
+
 use std::io::Read;
 use std::net::UdpSocket;
 use std::process::{Child, Command, Stdio};
@@ -77,13 +80,6 @@ impl Peer {
             desync_test: f[5] != 0,
         })
     }
-}
-
-fn splitmix64(mut x: u64) -> u64 {
-    x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    x ^ (x >> 31)
 }
 
 /// Player `player`'s input on `frame`, a pure function of its arguments: aim sweeping

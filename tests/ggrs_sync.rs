@@ -5,19 +5,15 @@
 //! few ticks, so the terrain changes all the time) must never mismatch, and must end on the
 //! state of a plain run of the same inputs without any rollback.
 
+mod common;
+use common::splitmix64;
+
 use craterfield::field2d::Level;
 use craterfield::net::rollback::{SessionBuilder, handle_requests};
 use craterfield::sim::input::buttons::{FIRE, JUMP, STICK};
 use craterfield::sim::{Input, Settings, World};
 
 const FRAMES: u32 = 1200;
-
-fn splitmix64(mut x: u64) -> u64 {
-    x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    x ^ (x >> 31)
-}
 
 /// Player `player`'s input on `frame`: a pure function of its arguments. Aim, throttle,
 /// weapon and power hold for segments of 24 frames; fire is pressed on about a quarter of

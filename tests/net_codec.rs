@@ -1,6 +1,9 @@
 //! Replay files and wire messages: round trips, one specific error per corruption class,
 //! decoders that never panic on hostile bytes, and the size figures the formats promise.
 
+mod common;
+use common::Rng;
+
 use std::time::Instant;
 
 use craterfield::field2d::Level;
@@ -13,22 +16,7 @@ use craterfield::net::wire::{self, MessageKind, TerrainSnapshot};
 use craterfield::sim::{Input, Settings, World, buttons, level_hash};
 use proptest::prelude::*;
 
-/// SplitMix64: deterministic test data without a dependency.
-struct Rng(u64);
-
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-
     /// Any valid input.
     fn input(&mut self) -> Input {
         Input {

@@ -2,28 +2,15 @@
 //! every run, evaluator backend and thread count, and after any pattern of rollbacks; a
 //! golden hash of a scripted 600-tick match is pinned (and checked on aarch64 too).
 
+mod common;
+use common::Rng;
+
 use std::collections::VecDeque;
 
 use craterfield::field2d::simd::Backend;
 use craterfield::field2d::{Level, Sdf};
 use craterfield::sim::{Input, Settings, SimError, Snapshot, World, buttons};
 use glam::Vec2;
-
-/// splitmix64.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
 
 /// Scripted inputs: throttle held for a while, fire, jump and stick presses, aim sweeps.
 fn script(seed: u64, players: usize, ticks: usize) -> Vec<Vec<Input>> {

@@ -1,25 +1,12 @@
 //! Rolling a terrain back to a mark and re-applying gives the same bits as never having
 //! rolled back: events, growth, fills, pruning and baked bricks included.
 
+mod common;
+use common::Rng;
+
 use craterfield::field2d::terrain::RollbackError;
 use craterfield::field2d::{Event, Level, Sdf, Terrain};
 use glam::Vec2;
-
-/// A deterministic pseudo-random stream (splitmix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
 
 /// One step of a scripted history: an event, or a tick advance.
 #[derive(Clone, Copy)]
