@@ -1,6 +1,6 @@
 //! The tape compiler: a level [`Graph`](super::Graph) lowered to a flat SSA program, then
-//! optimized and register-allocated into an instruction [`Tape`] that the evaluators of
-//! [`super::exec`] run on every backend.
+//! optimized and register-allocated into an instruction [`Tape`] that the interpreter
+//! (`field2d::exec`) runs on every backend.
 //!
 //! # Pipeline
 //!
