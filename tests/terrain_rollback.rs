@@ -163,3 +163,30 @@ fn stale_forgotten_and_disabled_marks_are_refused_without_change() {
     assert!(plain.mark().is_none());
     assert_eq!(plain.rollback(&now), Err(RollbackError::Disabled));
 }
+
+#[test]
+fn region_stamps_change_with_the_field_and_never_repeat() {
+    let mut t = terrain();
+    let p = Vec2::new(1300.0, 500.0);
+    let far = Vec2::new(3000.0, 500.0);
+    let s0 = t.region_stamp(p).unwrap();
+    let m = t.mark().unwrap();
+    t.apply(Event::carve(p, 10.0).unwrap()).unwrap();
+    let s1 = t.region_stamp(p).unwrap();
+    assert_ne!(s0, s1, "an event in the cell changes its stamp");
+    assert_eq!(t.region_stamp(far), Some(s0), "other cells keep theirs");
+    // Rolled back, the cell is as it was and so is its stamp; changed again, it gets a
+    // stamp never seen before, though the event count is the same as after the first.
+    t.rollback(&m).unwrap();
+    assert_eq!(t.region_stamp(p), Some(s0));
+    t.apply(Event::carve(p + Vec2::new(3.0, 0.0), 10.0).unwrap()).unwrap();
+    let s2 = t.region_stamp(p).unwrap();
+    assert!(s2 != s0 && s2 != s1);
+    // While a growing event is unsettled the field depends on the tick: no stamp.
+    t.apply(Event::carve(p, 20.0).unwrap().with_growth(10).at_tick(t.tick())).unwrap();
+    assert_eq!(t.region_stamp(p), None);
+    t.set_tick(t.tick() + 10);
+    assert!(t.region_stamp(p).is_some());
+    // Outside the grid nothing ever changes.
+    assert_eq!(t.region_stamp(Vec2::new(-500.0, -500.0)), Some(0));
+}

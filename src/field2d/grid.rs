@@ -115,6 +115,12 @@ pub struct GridStats {
 pub(crate) struct Cell {
     pub(crate) state: CellStateSlot,
     pub(crate) events: Vec<u32>,
+    /// Changes whenever the cell's field may change (a number never given to any other
+    /// content of any cell of this terrain), so callers can cache values by it.
+    pub(crate) revision: u64,
+    /// The tick from which every listed event is settled (the field stops depending on the
+    /// tick).
+    pub(crate) settled_at: u32,
 }
 
 /// A `CellState` with a `Default` (Base).

@@ -3,7 +3,32 @@
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
+use crate::field2d::Sample;
+
 use super::hash::StateHasher;
+
+/// The field sample at one of a body's probe points, kept while the point stays where it
+/// is and the terrain there does not change: a body at rest re-reads it instead of
+/// evaluating the field again. Derived data, not state: never hashed, and a hit gives
+/// exactly the bits a fresh evaluation would.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProbeCache {
+    /// The probe point.
+    pub point: Vec2,
+    /// The terrain's region stamp there when sampled.
+    pub stamp: u64,
+    /// The sample.
+    pub sample: Sample,
+}
+
+impl ProbeCache {
+    /// Whether the cached sample is the field at `point` with the terrain at `stamp`.
+    pub fn holds(&self, point: Vec2, stamp: u64) -> bool {
+        self.stamp == stamp
+            && self.point.x.to_bits() == point.x.to_bits()
+            && self.point.y.to_bits() == point.y.to_bits()
+    }
+}
 
 /// What a body is, with the state that only that kind has.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -65,6 +90,9 @@ pub struct Body {
     pub surface: Vec2,
     /// Clearance to the terrain at the last contact check (`+inf`-like when far).
     pub clearance: f32,
+    /// Samples of the last contact check, per probe point (see [`ProbeCache`]).
+    #[serde(skip)]
+    pub probes: [Option<ProbeCache>; 2],
 }
 
 impl Body {

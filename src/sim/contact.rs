@@ -31,13 +31,13 @@ const BOUNCE_THRESHOLD: f32 = 60.0;
 const REST_SPEED: f32 = 0.5;
 
 /// Where the body samples the field: the centre of a circle, the two ends of a capsule.
-pub fn probe_points(b: &Body, out: &mut Vec<Vec2>) {
+/// Returns the points and how many are used.
+pub fn probe_points(b: &Body) -> ([Vec2; 2], usize) {
     if b.half_length > 0.0 {
         let (a, c) = b.segment();
-        out.push(a);
-        out.push(c);
+        ([a, c], 2)
     } else {
-        out.push(b.pos);
+        ([b.pos, b.pos], 1)
     }
 }
 
@@ -64,7 +64,8 @@ struct Contact {
 }
 
 /// Solves the body's terrain contacts from its probe samples. `lipschitz` scales distances
-/// to conservative clearances. Updates `ground` and `clearance`, and the velocity.
+/// to conservative clearances. Updates `ground`, `surface` and `clearance`, and the
+/// velocity.
 pub fn solve(b: &mut Body, samples: &[Sample], lipschitz: f32, dt: f32) {
     let mut contacts = [None::<Contact>; 2];
     let mut clearance = f32::MAX;

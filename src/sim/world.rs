@@ -19,7 +19,7 @@ use crate::field2d::tape::EvalError;
 use crate::field2d::terrain::{RollbackError, TerrainMark};
 use crate::field2d::{Graph, Level, Sample, Sdf, Terrain, TerrainError};
 
-use super::body::{Body, BodyKind};
+use super::body::{Body, BodyKind, ProbeCache};
 use super::collide::{self, Broadphase, Overlap};
 use super::contact;
 use super::hash::StateHasher;
@@ -127,6 +127,8 @@ pub struct World {
 #[derive(Clone, Debug, Default)]
 struct Scratch {
     points: Vec<Vec2>,
+    /// For each point of `points`: its body, its probe and the region stamp.
+    pending: Vec<(usize, usize, Option<u64>)>,
     samples: Vec<Sample>,
     sweeps: Vec<Sweep>,
     sweep_of: Vec<usize>,
@@ -217,6 +219,7 @@ impl World {
             ground: Vec2::ZERO,
             surface: Vec2::ZERO,
             clearance: f32::MAX,
+            probes: [None; 2],
         };
         self.next_id += 1;
         self.bodies.push(body);
@@ -253,6 +256,7 @@ impl World {
             ground: Vec2::ZERO,
             surface: Vec2::ZERO,
             clearance: f32::MAX,
+            probes: [None; 2],
         });
         self.next_id += 1;
         Ok(id)
@@ -493,6 +497,7 @@ impl World {
             ground: Vec2::ZERO,
             surface: Vec2::ZERO,
             clearance: f32::MAX,
+            probes: [None; 2],
         });
         self.next_id += 1;
     }
@@ -566,14 +571,24 @@ impl World {
         Ok(())
     }
 
-    /// Vehicles and debris against the terrain: one batch of samples, then the solve and
-    /// the move.
+    /// Vehicles and debris against the terrain: one batch of samples for every probe
+    /// point whose cached sample is stale, then the solve and the move.
     fn contacts(&mut self, dt: f32) -> Result<(), SimError> {
         let s = &mut self.scratch;
         s.points.clear();
-        for b in &self.bodies {
-            if !b.is_projectile() {
-                contact::probe_points(b, &mut s.points);
+        s.pending.clear();
+        for (i, b) in self.bodies.iter().enumerate() {
+            if b.is_projectile() {
+                continue;
+            }
+            let (points, n) = contact::probe_points(b);
+            for (k, &p) in points.iter().enumerate().take(n) {
+                let stamp = self.terrain.region_stamp(p);
+                let fresh = stamp.zip(b.probes[k]).is_some_and(|(st, c)| c.holds(p, st));
+                if !fresh {
+                    s.points.push(p);
+                    s.pending.push((i, k, stamp));
+                }
             }
         }
         let blank = Sample {
@@ -584,16 +599,33 @@ impl World {
         s.samples.clear();
         s.samples.resize(s.points.len(), blank);
         sample_all(&self.terrain, &s.points, &mut s.samples, self.threads)?;
+        for (j, &(i, k, stamp)) in s.pending.iter().enumerate() {
+            let cache = ProbeCache {
+                point: s.points[j],
+                stamp: stamp.unwrap_or(0),
+                sample: s.samples[j],
+            };
+            // A tick-dependent region gets a sample for this tick only.
+            self.bodies[i].probes[k] = Some(cache).filter(|_| stamp.is_some());
+        }
         let lipschitz = self.terrain.lipschitz();
-        let mut next = 0;
-        for b in &mut self.bodies {
+        let mut j = 0;
+        for (i, b) in self.bodies.iter_mut().enumerate() {
             if b.is_projectile() {
                 continue;
             }
-            let n = if b.half_length > 0.0 { 2 } else { 1 };
-            let samples = &s.samples[next..next + n];
-            next += n;
-            contact::solve(b, samples, lipschitz, dt);
+            let n = contact::probe_points(b).1;
+            let mut samples = [blank; 2];
+            for (k, slot) in samples.iter_mut().enumerate().take(n) {
+                *slot = match s.pending.get(j) {
+                    Some(&(pi, pk, _)) if pi == i && pk == k => {
+                        j += 1;
+                        s.samples[j - 1]
+                    }
+                    _ => b.probes[k].map_or(blank, |c| c.sample),
+                };
+            }
+            contact::solve(b, &samples[..n], lipschitz, dt);
             b.pos += b.vel * dt;
             follow_surface(b);
         }

@@ -226,6 +226,8 @@ pub struct Terrain<F: Sdf> {
     plans: Option<Plans>,
     /// The backend of batch queries.
     backend: Backend,
+    /// The next cell revision to hand out (never reused, not rolled back).
+    next_revision: u64,
 }
 
 /// The numbers the field runs on: `f32` for distances, [`Dual`] for samples.
@@ -464,6 +466,7 @@ impl<F: Sdf> Terrain<F> {
             over_cap: BTreeSet::new(),
             plans,
             backend: Backend::best(),
+            next_revision: 1,
         })
     }
 
@@ -558,6 +561,10 @@ impl<F: Sdf> Terrain<F> {
             let pending: Vec<usize> = self.over_cap.iter().copied().collect();
             for cell in pending {
                 self.record_cell(cell);
+                let revision = self.new_revision();
+                if let Some(c) = self.grid.cells.get_mut(cell) {
+                    c.revision = revision;
+                }
                 self.over_cap.remove(&cell);
                 self.compact(cell);
             }
@@ -612,6 +619,25 @@ impl<F: Sdf> Terrain<F> {
         self.grid.journal.as_ref().map_or(0, Journal::len)
     }
 
+    /// A revision number never handed out before.
+    fn new_revision(&mut self) -> u64 {
+        self.next_revision += 1;
+        self.next_revision
+    }
+
+    /// A number that changes whenever the field at `p` may change, or `None` while it
+    /// depends on the tick (growing or not yet started events reach `p`'s cell). Equal
+    /// stamps at the same point mean bit-identical results, so callers can cache samples
+    /// of points that do not move (bodies at rest) by it.
+    pub fn region_stamp(&self, p: Vec2) -> Option<u64> {
+        // Outside the grid no event reaches: the field there never changes.
+        let Some(cell) = self.grid.cell_index(p) else {
+            return Some(0);
+        };
+        let c = self.grid.cells.get(cell)?;
+        (self.tick >= c.settled_at).then_some(c.revision)
+    }
+
     /// Records `cell`'s pre-image before a change.
     fn record_cell(&mut self, cell: usize) {
         if self.grid.journal.is_none() {
@@ -649,6 +675,12 @@ impl<F: Sdf> Terrain<F> {
     /// Rebuilds the grid by replaying every event at the current tick.
     fn rebuild(&mut self) {
         self.grid.clear();
+        for i in 0..self.grid.cells.len() {
+            let revision = self.new_revision();
+            if let Some(c) = self.grid.cells.get_mut(i) {
+                c.revision = revision;
+            }
+        }
         if let Some(j) = &mut self.grid.journal {
             j.reset();
         }
@@ -667,10 +699,14 @@ impl<F: Sdf> Terrain<F> {
         let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
         let extent = event_extent(&e) + band;
         let reach = fixed_f64(e.radius) + fixed_f64(e.rim) + band;
+        let settled_at = e.tick.saturating_add(u32::from(e.grow_ticks));
         for cell in self.grid.cells_touching(center, reach, extent) {
             self.record_cell(cell);
+            let revision = self.new_revision();
             if let Some(c) = self.grid.cells.get_mut(cell) {
                 c.events.push(idx);
+                c.revision = revision;
+                c.settled_at = c.settled_at.max(settled_at);
             }
             self.prune_new(cell, idx, &e);
             self.compact(cell);
