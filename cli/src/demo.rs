@@ -1,5 +1,7 @@
 //! `craterfield demo`: the default level under a scripted barrage, rendered on the CPU
-//! (full-resolution exact field) with a JSON summary of what happened and how fast.
+//! (full-resolution exact field) with a JSON summary of what happened and how fast; then a
+//! scripted four-player match on the pristine level, recorded as a replay and pictured at
+//! its last tick.
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -15,6 +17,14 @@ use serde::Serialize;
 
 use crate::barrage::{self, BarrageStats};
 use crate::rng::Rng;
+use crate::{frame, script};
+
+/// Players of the demo match.
+const MATCH_PLAYERS: u8 = 4;
+/// Ticks between two state hashes stored in the demo match's replay.
+const MATCH_HASH_INTERVAL: u32 = 60;
+/// Seed of the demo match's scripted players.
+const MATCH_SEED: u64 = 0x006d_6174_6368;
 
 #[derive(Serialize)]
 struct Summary {
@@ -22,6 +32,28 @@ struct Summary {
     events: EventSummary,
     timings: Timings,
     field: FieldStats,
+    image: ImageInfo,
+    /// The scripted match (absent when it was skipped).
+    #[serde(rename = "match", skip_serializing_if = "Option::is_none")]
+    match_: Option<MatchSummary>,
+}
+
+#[derive(Serialize)]
+struct MatchSummary {
+    players: u8,
+    ticks: u32,
+    seconds: f64,
+    shots: usize,
+    explosions: usize,
+    replay_bytes: usize,
+    replay_bytes_per_min: f64,
+    hashes: usize,
+    /// The state hash after the last tick, as hex.
+    final_hash: String,
+    bodies_left: usize,
+    vehicles_left: usize,
+    simulate_ms: f64,
+    replay: String,
     image: ImageInfo,
 }
 
@@ -66,6 +98,7 @@ pub fn run(
     events: usize,
     width: u32,
     level: Option<&Path>,
+    match_ticks: u32,
 ) -> Result<ExitCode, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let level = match level {
@@ -114,6 +147,14 @@ pub fn run(
     img.save(&png)
         .map_err(|e| format!("cannot write {}: {e}", png.display()))?;
 
+    bar.set_message("match");
+    let (match_summary, match_note) = match play_match(&level, out, width, match_ticks)? {
+        Ok(Some(m)) => (Some(m), None),
+        Ok(None) => (None, Some("skipped (--match-ticks 0)".to_string())),
+        Err(why) => (None, Some(format!("skipped: {why}"))),
+    };
+    bar.finish_and_clear();
+
     let grid = terrain.stats();
     let summary = Summary {
         level: level.name().to_string(),
@@ -144,6 +185,7 @@ pub fn run(
             width: camera.width,
             height: camera.height,
         },
+        match_: match_summary,
     };
     let json = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     let json_path = out.join("summary.json");
@@ -171,7 +213,80 @@ pub fn run(
         render_ms,
         json_path.display()
     );
+    match (&summary.match_, match_note) {
+        (Some(m), _) => println!(
+            "  match: {} players, {} ticks ({:.1} s), {} shots, {} explosions, replay {} bytes ({:.0} bytes/minute), final hash {}; wrote {} and {}",
+            m.players,
+            m.ticks,
+            m.seconds,
+            m.shots,
+            m.explosions,
+            m.replay_bytes,
+            m.replay_bytes_per_min,
+            m.final_hash,
+            m.replay,
+            m.image.path
+        ),
+        (None, note) => println!("  match: {}", note.unwrap_or_default()),
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Plays, records and pictures the scripted match. `Ok(Err(..))`: the match could not be
+/// played (a level without spawn points, say); `Err`: the files could not be written.
+fn play_match(
+    level: &Level,
+    out: &Path,
+    width: u32,
+    ticks: u32,
+) -> Result<Result<Option<MatchSummary>, String>, String> {
+    if ticks == 0 {
+        return Ok(Ok(None));
+    }
+    let settings = craterfield::sim::Settings::default();
+    let t = Instant::now();
+    let played = match script::play(
+        level,
+        settings,
+        MATCH_PLAYERS,
+        ticks,
+        MATCH_SEED,
+        MATCH_HASH_INTERVAL,
+    ) {
+        Ok(p) => p,
+        Err(why) => return Ok(Err(why)),
+    };
+    let simulate_ms = t.elapsed().as_secs_f64() * 1e3;
+    let bytes = played.replay.encode().map_err(|e| e.to_string())?;
+    let replay_path = out.join("match.replay");
+    std::fs::write(&replay_path, &bytes)
+        .map_err(|e| format!("cannot write {}: {e}", replay_path.display()))?;
+    let img = frame::render(level, &played.world, width);
+    let png = out.join("match.png");
+    img.save(&png)
+        .map_err(|e| format!("cannot write {}: {e}", png.display()))?;
+    let seconds = f64::from(ticks) / f64::from(settings.tick_hz);
+    let (vehicles_left, _, _) = frame::census(&played.world);
+    Ok(Ok(Some(MatchSummary {
+        players: MATCH_PLAYERS,
+        ticks: played.replay.ticks(),
+        seconds,
+        shots: played.shots,
+        explosions: played.events().len(),
+        replay_bytes: bytes.len(),
+        replay_bytes_per_min: bytes.len() as f64 * 60.0 / seconds,
+        hashes: played.replay.hashes.len(),
+        final_hash: format!("{:#018x}", played.world.state_hash()),
+        bodies_left: played.world.bodies().len(),
+        vehicles_left,
+        simulate_ms,
+        replay: replay_path.display().to_string(),
+        image: ImageInfo {
+            path: png.display().to_string(),
+            width: img.width(),
+            height: img.height(),
+        },
+    })))
 }
 
 /// Mean nanoseconds per distance and per distance+gradient query, and microseconds per

@@ -1,12 +1,17 @@
-//! The `craterfield` command-line tool: the demo (default), level checks and benchmarks.
+//! The `craterfield` command-line tool: the demo (default), level checks, replays and
+//! benchmarks.
 
 mod barrage;
 mod bench;
 mod bench_eval;
+mod bench_sim;
 mod demo;
+mod frame;
 #[cfg(feature = "peers")]
 mod peers;
+mod replay_cmd;
 mod rng;
+mod script;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -17,7 +22,7 @@ use clap::{Parser, Subcommand};
 #[command(
     name = "craterfield",
     version,
-    about = "Destructible 2D SDF terrain: demo, level checks, benchmarks"
+    about = "Destructible 2D SDF terrain: demo, level checks, replays, benchmarks"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -26,7 +31,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Load the default level, fire a scripted barrage, render it and write a summary.
+    /// Load the default level, fire a scripted barrage, render it and write a summary; then
+    /// play, record and picture a scripted four-player match (match.replay, match.png).
     Demo {
         /// Output folder.
         #[arg(long, default_value = "out/demo")]
@@ -40,6 +46,14 @@ enum Command {
         /// A level file to use instead of the embedded default level.
         #[arg(long)]
         level: Option<PathBuf>,
+        /// Ticks of the scripted match (60 per second; 0 skips the match).
+        #[arg(long, default_value_t = DEMO_MATCH_TICKS)]
+        match_ticks: u32,
+    },
+    /// Replay files: verify, describe, render.
+    Replay {
+        #[command(subcommand)]
+        command: ReplayCommand,
     },
     /// Level files.
     Level {
@@ -59,6 +73,44 @@ enum LevelCommand {
     Check {
         /// The RON level file.
         file: PathBuf,
+    },
+}
+
+#[derive(Subcommand)]
+enum ReplayCommand {
+    /// Re-simulate a replay and compare every stored state hash: exit 0 when all match,
+    /// 1 naming the first divergent tick or why the file cannot be read.
+    Verify {
+        /// The replay file.
+        file: PathBuf,
+        /// The level it was recorded on (default: the embedded default level).
+        #[arg(long)]
+        level: Option<PathBuf>,
+    },
+    /// Print what a replay holds: version, level, players, length, settings, size.
+    Info {
+        /// The replay file.
+        file: PathBuf,
+        /// The level to compare its level hash with (default: the embedded default level).
+        #[arg(long)]
+        level: Option<PathBuf>,
+    },
+    /// Re-simulate a replay to a tick and write a PNG of the terrain and the bodies.
+    Render {
+        /// The replay file.
+        file: PathBuf,
+        /// The tick to picture (0 = the start; default: the last tick).
+        #[arg(long)]
+        tick: Option<u32>,
+        /// The PNG to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// Image width in pixels (the world is fitted to it).
+        #[arg(long, default_value_t = 1920)]
+        width: u32,
+        /// The level it was recorded on (default: the embedded default level).
+        #[arg(long)]
+        level: Option<PathBuf>,
     },
 }
 
@@ -94,7 +146,38 @@ enum BenchCommand {
         #[arg(long, value_delimiter = ',')]
         tiles: Vec<u32>,
     },
+    /// The simulation: ms per tick by body count, snapshot and restore, replay and wire
+    /// sizes, on the default level after 10,000 explosions, one thread.
+    Sim {
+        /// Print one JSON object instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Body counts of the rows (vehicles included), comma-separated.
+        #[arg(long, value_delimiter = ',', default_value = "100,1000,10000")]
+        bodies: Vec<usize>,
+        /// Timed ticks per row.
+        #[arg(long, default_value_t = 120)]
+        ticks: u32,
+        /// Untimed ticks before the timed ones.
+        #[arg(long, default_value_t = 60)]
+        warmup: u32,
+        /// Explosions applied to the terrain first.
+        #[arg(long, default_value_t = 10_000)]
+        explosions: usize,
+        /// Bodies in the snapshot and restore world.
+        #[arg(long, default_value_t = 1000)]
+        snapshot_bodies: usize,
+        /// Snapshot and restore repetitions (medians are reported).
+        #[arg(long, default_value_t = 300)]
+        reps: usize,
+        /// Length in seconds of the scripted match measured for replay and wire sizes.
+        #[arg(long, default_value_t = 60)]
+        match_seconds: u32,
+    },
 }
+
+/// Ticks of the demo's scripted match (20 s at 60 Hz).
+const DEMO_MATCH_TICKS: u32 = 1200;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -103,13 +186,26 @@ fn main() -> ExitCode {
         events: 600,
         width: 3840,
         level: None,
+        match_ticks: DEMO_MATCH_TICKS,
     }) {
         Command::Demo {
             out,
             events,
             width,
             level,
-        } => demo::run(&out, events, width, level.as_deref()),
+            match_ticks,
+        } => demo::run(&out, events, width, level.as_deref(), match_ticks),
+        Command::Replay { command } => match command {
+            ReplayCommand::Verify { file, level } => replay_cmd::verify(&file, level.as_deref()),
+            ReplayCommand::Info { file, level } => replay_cmd::info(&file, level.as_deref()),
+            ReplayCommand::Render {
+                file,
+                tick,
+                out,
+                width,
+                level,
+            } => replay_cmd::render(&file, tick, &out, width, level.as_deref()),
+        },
         Command::Level {
             command: LevelCommand::Check { file },
         } => level_check(&file),
@@ -133,6 +229,28 @@ fn main() -> ExitCode {
             only,
             backends,
             tiles,
+        }),
+        Command::Bench {
+            command:
+                BenchCommand::Sim {
+                    json,
+                    bodies,
+                    ticks,
+                    warmup,
+                    explosions,
+                    snapshot_bodies,
+                    reps,
+                    match_seconds,
+                },
+        } => bench_sim::sim(bench_sim::Options {
+            json,
+            bodies,
+            ticks,
+            warmup,
+            explosions,
+            snapshot_bodies,
+            reps,
+            match_seconds,
         }),
     };
     match result {

@@ -1,9 +1,14 @@
 //! The command-line tool end to end: the demo writes its image and summary, `level check`
-//! accepts good levels and names the problem in bad ones, and `bench field --json` prints
-//! the documented keys.
+//! accepts good levels and names the problem in bad ones, the demo's match replay verifies
+//! and damaged replays are refused with a message (never a panic), `replay render` writes
+//! the picture asked for, and `bench field --json` and `bench sim --json` print the
+//! documented keys.
 
-use std::path::PathBuf;
-use std::process::Command;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+use craterfield::net::Replay;
 
 fn craterfield() -> Command {
     Command::new(env!("CARGO_BIN_EXE_craterfield"))
@@ -113,4 +118,213 @@ fn bench_field_json_has_the_documented_keys() {
     // The per-query cost is bounded by the cell cap whatever the event count.
     let cap = v["max_cell_events"]["10000"].as_u64().unwrap();
     assert!(cap <= 48, "{v}");
+}
+
+/// Ticks of the small demo match the replay tests share.
+const MATCH_TICKS: u32 = 300;
+
+/// One small demo run (made once, shared by the replay tests): its summary and its match
+/// replay's bytes.
+struct DemoMatch {
+    summary: serde_json::Value,
+    replay: Vec<u8>,
+}
+
+fn demo_match() -> &'static DemoMatch {
+    static RUN: OnceLock<DemoMatch> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let out = temp_dir("match");
+        let run = craterfield()
+            .args(["demo", "--events", "40", "--width", "320"])
+            .args(["--match-ticks", &MATCH_TICKS.to_string(), "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let stdout = text(&run.stdout);
+        assert!(
+            stdout.contains(&format!("match: 4 players, {MATCH_TICKS} ticks")),
+            "{stdout}"
+        );
+        assert!(out.join("match.png").exists());
+        let summary = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap());
+        let run = DemoMatch {
+            summary: summary.unwrap(),
+            replay: std::fs::read(out.join("match.replay")).unwrap(),
+        };
+        std::fs::remove_dir_all(&out).ok();
+        run
+    })
+}
+
+/// The demo's match replay, written into `dir`.
+fn match_file(dir: &Path) -> PathBuf {
+    let file = dir.join("match.replay");
+    std::fs::write(&file, &demo_match().replay).unwrap();
+    file
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn replay(args: &[&str], file: &Path) -> Output {
+    craterfield()
+        .arg("replay")
+        .arg(args[0])
+        .arg(file)
+        .args(&args[1..])
+        .output()
+        .unwrap()
+}
+
+/// Exit status 1 with `needle` in the message, and no panic.
+fn assert_refused(out: &Output, needle: &str) {
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(stderr.contains(needle), "expected {needle:?} in: {stderr}");
+}
+
+#[test]
+fn demo_match_replay_verifies_and_info_describes_it() {
+    let dir = temp_dir("verify");
+    let file = match_file(&dir);
+    let summary = &demo_match().summary;
+    assert_eq!(summary["match"]["ticks"], MATCH_TICKS, "{summary}");
+    assert_eq!(summary["match"]["players"], 4, "{summary}");
+    let bytes = summary["match"]["replay_bytes"].as_u64().unwrap();
+    assert_eq!(bytes, std::fs::metadata(&file).unwrap().len());
+    // The existing summary keys are still there.
+    assert!(summary["events"]["applied"].as_u64().unwrap() > 0);
+
+    let out = replay(&["verify"], &file);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", text(&out.stderr));
+    assert!(
+        stdout.contains(&format!("ok: {MATCH_TICKS} ticks")) && stdout.contains("hashes match"),
+        "{stdout}"
+    );
+    let hash = summary["match"]["final_hash"].as_str().unwrap();
+    assert!(stdout.contains(hash), "{stdout} vs {hash}");
+
+    let out = replay(&["info"], &file);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(stdout.contains("players:    4"), "{stdout}");
+    assert!(
+        stdout.contains(&format!("ticks:      {MATCH_TICKS} at 60 Hz (5.00 s)")),
+        "{stdout}"
+    );
+    assert!(stdout.contains("matches level \"Default\""), "{stdout}");
+    assert!(stdout.contains("bytes/minute"), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn damaged_replays_are_refused_with_the_problem_named() {
+    let original = &demo_match().replay;
+    let dir = temp_dir("damaged");
+
+    let truncated = dir.join("truncated.replay");
+    std::fs::write(&truncated, &original[..original.len() * 2 / 3]).unwrap();
+    assert_refused(&replay(&["verify"], &truncated), "truncated");
+
+    let flipped = dir.join("flipped.replay");
+    let mut bytes = original.clone();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 0x10;
+    std::fs::write(&flipped, &bytes).unwrap();
+    assert_refused(&replay(&["verify"], &flipped), "checksum mismatch");
+
+    let empty = dir.join("empty.replay");
+    std::fs::write(&empty, b"").unwrap();
+    assert_refused(&replay(&["verify"], &empty), "truncated");
+    assert_refused(&replay(&["info"], &flipped), "checksum mismatch");
+
+    // A well-formed file whose stored hash was changed: the checksum is right, so only the
+    // re-simulation finds it, at that tick.
+    let mut decoded = Replay::decode(original).unwrap();
+    let (tick, hash) = decoded.hashes[2];
+    decoded.hashes[2].1 = hash ^ 1;
+    let forged = dir.join("forged.replay");
+    std::fs::write(&forged, decoded.encode().unwrap()).unwrap();
+    let out = replay(&["verify"], &forged);
+    assert_refused(&out, &format!("first divergent tick {tick}:"));
+    assert!(text(&out.stderr).contains(&format!("{:#018x}", hash ^ 1)));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn replay_render_writes_a_png_of_the_requested_width() {
+    let dir = temp_dir("render");
+    let file = match_file(&dir);
+    let png = dir.join("frame.png");
+    let out = craterfield()
+        .args(["replay", "render"])
+        .arg(&file)
+        .args(["--tick", "150", "--width", "400", "--out"])
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("tick 150 of 300"),
+        "{}",
+        text(&out.stdout)
+    );
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(img.width(), 400);
+    // Every vehicle is still alive at tick 150 and drawn in its player's colour: the
+    // red of player 0 is nowhere in the sky or the terrain palette.
+    let red = img
+        .pixels()
+        .filter(|p| p[0] > 200 && p[1] < 90 && p[2] < 90)
+        .count();
+    assert!(red > 0, "player 0's vehicle should be drawn");
+
+    let out = craterfield()
+        .args(["replay", "render"])
+        .arg(&file)
+        .args(["--tick", "301", "--out"])
+        .arg(dir.join("late.png"))
+        .output()
+        .unwrap();
+    assert_refused(&out, "past the end");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bench_sim_json_has_the_documented_keys() {
+    let out = craterfield()
+        .args(["bench", "sim", "--json", "--bodies", "40,80"])
+        .args(["--ticks", "4", "--warmup", "2", "--explosions", "200"])
+        .args([
+            "--snapshot-bodies",
+            "40",
+            "--reps",
+            "4",
+            "--match-seconds",
+            "2",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2, "{v}");
+    for (row, n) in rows.iter().zip([40, 80]) {
+        assert_eq!(row["bodies"], n, "{v}");
+        assert!(row["ms_per_tick"].as_f64().unwrap() > 0.0, "{v}");
+    }
+    for key in [
+        "snapshot_ms",
+        "restore_ms",
+        "replay_bytes_per_min",
+        "bytes_per_event",
+    ] {
+        assert!(v[key].as_f64().unwrap() > 0.0, "{key} in {v}");
+    }
+    assert!(v["bytes_per_event"].as_f64().unwrap() <= 16.0, "{v}");
+    assert_eq!(v["explosions"], 200, "{v}");
 }
