@@ -16,7 +16,7 @@ use crate::field2d::event::EventKind;
 use crate::field2d::exec::batch::{Block, check};
 use crate::field2d::exec::value::clamp;
 use crate::field2d::exec::{Dv, Fv, P2, Val};
-use crate::field2d::grid::{CellState, MaterialSource};
+use crate::field2d::grid::{self, CellState, MaterialSource, Rect};
 use crate::field2d::sdf::{MaterialId, Sample, Sdf};
 use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
 use crate::field2d::tape::{EvalError, MatOut};
@@ -236,6 +236,34 @@ impl<F: Sdf> Terrain<F> {
     }
 }
 
+/// The events of `events` that can change anything at `pts`: the grid's own reach test
+/// (the one that lists an event in a cell, see `Terrain::insert`) applied to the points'
+/// bounding box instead of the whole cell. An event beyond it leaves every lane's bits as
+/// they are (the field is clamped to the band), so leaving it out changes nothing, and
+/// scattered points (bodies, projectiles) skip most of a busy cell's list.
+fn events_reaching(events: &[Prepared], pts: &[Vec2], band: f32, out: &mut Vec<Prepared>) {
+    out.clear();
+    let Some(first) = pts.first() else {
+        return;
+    };
+    let mut rect = Rect {
+        min: [f64::from(first.x), f64::from(first.y)],
+        max: [f64::from(first.x), f64::from(first.y)],
+    };
+    for p in pts {
+        let (x, y) = (f64::from(p.x), f64::from(p.y));
+        rect.min = [rect.min[0].min(x), rect.min[1].min(y)];
+        rect.max = [rect.max[0].max(x), rect.max[1].max(y)];
+    }
+    let band = f64::from(band);
+    out.extend(events.iter().copied().filter(|e| {
+        let center = [f64::from(e.center.x), f64::from(e.center.y)];
+        let (r, k) = (f64::from(e.radius), f64::from(e.rim));
+        let extent = center[0].abs() + center[1].abs() + r + k + band;
+        rect.near_dist(center) <= r + k + band + 2.0 * grid::guard(extent, &rect)
+    }));
+}
+
 /// Gathers the points of one block of a group.
 fn gather(points: &[Vec2], idx: &[u32], buf: &mut Vec<Vec2>) {
     buf.clear();
@@ -261,6 +289,7 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
         let mut pts = Vec::new();
         let mut lanes = [0.0f32; 16];
         let mut events = Vec::new();
+        let mut reaching = Vec::new();
         let step = NB * L::WIDTH;
         for g in self.groups {
             let start = t.start(self.plans, g.cell, false);
@@ -307,7 +336,8 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
                     }
                 }
                 let mut mats = [l.splat_i(0); NB];
-                for e in &events {
+                events_reaching(&events, &pts, band, &mut reaching);
+                for e in &reaching {
                     for r in 0..NB {
                         (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
                     }
@@ -344,6 +374,7 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
         let mut mat_lanes = [0i32; 16];
         let mut tape_mats = [0 as MaterialId; 16];
         let mut events = Vec::new();
+        let mut reaching = Vec::new();
         let step = NB * L::WIDTH;
         for g in self.groups {
             let start = t.start(self.plans, g.cell, true);
@@ -394,7 +425,8 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                         }
                     }
                 }
-                for e in &events {
+                events_reaching(&events, &pts, band, &mut reaching);
+                for e in &reaching {
                     for r in 0..NB {
                         (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
                     }
@@ -476,6 +508,7 @@ fn smooth<L: Lanes, V: Val<L>>(l: L, a: V, b: V, k: f32, max: bool) -> V {
 }
 
 /// An event's constants at the current tick.
+#[derive(Clone, Copy)]
 struct Prepared {
     kind: EventKind,
     center: Vec2,
