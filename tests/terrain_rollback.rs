@@ -179,11 +179,18 @@ fn region_stamps_change_with_the_field_and_never_repeat() {
     // stamp never seen before, though the event count is the same as after the first.
     t.rollback(&m).unwrap();
     assert_eq!(t.region_stamp(p), Some(s0));
-    t.apply(Event::carve(p + Vec2::new(3.0, 0.0), 10.0).unwrap()).unwrap();
+    t.apply(Event::carve(p + Vec2::new(3.0, 0.0), 10.0).unwrap())
+        .unwrap();
     let s2 = t.region_stamp(p).unwrap();
     assert!(s2 != s0 && s2 != s1);
     // While a growing event is unsettled the field depends on the tick: no stamp.
-    t.apply(Event::carve(p, 20.0).unwrap().with_growth(10).at_tick(t.tick())).unwrap();
+    t.apply(
+        Event::carve(p, 20.0)
+            .unwrap()
+            .with_growth(10)
+            .at_tick(t.tick()),
+    )
+    .unwrap();
     assert_eq!(t.region_stamp(p), None);
     t.set_tick(t.tick() + 10);
     assert!(t.region_stamp(p).is_some());
