@@ -264,6 +264,24 @@ fn events_reaching(events: &[Prepared], pts: &[Vec2], band: f32, out: &mut Vec<P
     }));
 }
 
+/// The events to apply to one block of group `g`: all of the cell's for a group of several
+/// blocks (points spread over the cell, where the test would rarely drop one), else those
+/// reaching the block's points.
+fn reaching_block<'e>(
+    events: &'e [Prepared],
+    pts: &[Vec2],
+    g: &Group,
+    step: usize,
+    band: f32,
+    reaching: &'e mut Vec<Prepared>,
+) -> &'e [Prepared] {
+    if g.end - g.start > step {
+        return events;
+    }
+    events_reaching(events, pts, band, reaching);
+    reaching
+}
+
 /// Gathers the points of one block of a group.
 fn gather(points: &[Vec2], idx: &[u32], buf: &mut Vec<Vec2>) {
     buf.clear();
@@ -336,8 +354,8 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
                     }
                 }
                 let mut mats = [l.splat_i(0); NB];
-                events_reaching(&events, &pts, band, &mut reaching);
-                for e in &reaching {
+                let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
+                for e in events {
                     for r in 0..NB {
                         (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
                     }
@@ -425,8 +443,8 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                         }
                     }
                 }
-                events_reaching(&events, &pts, band, &mut reaching);
-                for e in &reaching {
+                let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
+                for e in events {
                     for r in 0..NB {
                         (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
                     }
