@@ -32,10 +32,10 @@ impl Rng {
 /// A replay whose every tick is a fresh random row (the worst case for run lengths), with
 /// made-up hashes (no simulation needed to test the format).
 fn random_replay(rng: &mut Rng, players: u8, ticks: u32) -> Replay {
-    let mut rec = Recorder::new(rng.next(), Settings::default(), players, 60);
+    let mut rec = Recorder::new(rng.next(), Settings::default(), players, 60).unwrap();
     for t in 1..=ticks {
         let row: Vec<Input> = (0..players).map(|_| rng.input()).collect();
-        rec.record(&row, t, rng.next());
+        rec.record(&row, t, rng.next()).unwrap();
     }
     rec.finish(ticks, rng.next())
 }
@@ -70,13 +70,13 @@ fn scripted_rows(players: usize, ticks: u32, seed: u64) -> Vec<Vec<Input>> {
 }
 
 fn scripted_replay(players: u8, ticks: u32, seed: u64) -> Replay {
-    let mut rec = Recorder::new(seed, Settings::default(), players, 60);
+    let mut rec = Recorder::new(seed, Settings::default(), players, 60).unwrap();
     let mut rng = Rng(seed ^ 1);
     for (t, row) in scripted_rows(players.into(), ticks, seed)
         .iter()
         .enumerate()
     {
-        rec.record(row, t as u32 + 1, rng.next());
+        rec.record(row, t as u32 + 1, rng.next()).unwrap();
     }
     rec.finish(ticks, rng.next())
 }
@@ -119,13 +119,32 @@ fn replay_round_trips_for_two_to_four_players() {
 }
 
 #[test]
+fn recorder_misuse_is_an_error_not_a_panic() {
+    for (players, interval) in [(0, 60), (9, 60), (2, 0)] {
+        let e = Recorder::new(1, Settings::default(), players, interval).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains(if interval == 0 { "interval" } else { "players" }),
+            "{e}"
+        );
+    }
+    let mut rec = Recorder::new(1, Settings::default(), 2, 60).unwrap();
+    let e = rec.record(&[Input::default(); 3], 1, 5).unwrap_err();
+    assert!(
+        e.to_string().contains("3 inputs recorded for 2 players"),
+        "{e}"
+    );
+    assert_eq!(rec.ticks(), 0, "nothing recorded");
+}
+
+#[test]
 fn empty_and_single_tick_replays_round_trip() {
-    let rec = Recorder::new(1, Settings::default(), 1, 60);
+    let rec = Recorder::new(1, Settings::default(), 1, 60).unwrap();
     let empty = rec.finish(0, 99);
     assert_eq!((empty.ticks(), empty.hashes.clone()), (0, vec![(0, 99)]));
     assert_eq!(Replay::decode(&empty.encode().unwrap()).unwrap(), empty);
-    let mut rec = Recorder::new(1, Settings::default(), 8, 1);
-    rec.record(&[Input::default(); 8], 1, 5);
+    let mut rec = Recorder::new(1, Settings::default(), 8, 1).unwrap();
+    rec.record(&[Input::default(); 8], 1, 5).unwrap();
     let one = rec.finish(1, 5);
     assert_eq!(one.hashes, vec![(1, 5)]);
     assert_eq!(Replay::decode(&one.encode().unwrap()).unwrap(), one);
@@ -510,10 +529,10 @@ fn replay_compactness_of_a_four_player_match() {
 fn played_match(level: &Level, ticks: u32) -> (Replay, World) {
     let settings = Settings::default();
     let mut world = World::new(level, settings, 2).unwrap();
-    let mut rec = Recorder::new(level_hash(level), settings, 2, 30);
+    let mut rec = Recorder::new(level_hash(level), settings, 2, 30).unwrap();
     for row in scripted_rows(2, ticks, 11) {
         world.step(&row).unwrap();
-        rec.record(&row, world.tick(), world.state_hash());
+        rec.record(&row, world.tick(), world.state_hash()).unwrap();
     }
     (rec.finish(world.tick(), world.state_hash()), world)
 }
@@ -891,10 +910,10 @@ proptest! {
         interval in 1u32..50,
         hold in 1usize..5,
     ) {
-        let mut rec = Recorder::new(5, Settings::default(), players, interval);
+        let mut rec = Recorder::new(5, Settings::default(), players, interval).unwrap();
         // Each random row held for `hold` ticks, so runs of several ticks occur.
         for (t, row) in rows.iter().flat_map(|r| std::iter::repeat_n(r, hold)).enumerate() {
-            rec.record(&row[..usize::from(players)], t as u32 + 1, t as u64);
+            rec.record(&row[..usize::from(players)], t as u32 + 1, t as u64).unwrap();
         }
         let ticks = rec.ticks();
         let replay = rec.finish(ticks, 0);

@@ -181,7 +181,8 @@ pub fn play(
 ) -> Result<Played, String> {
     let mut world =
         World::new(level, settings, usize::from(players)).map_err(|e| format!("match: {e}"))?;
-    let mut recorder = Recorder::new(level_hash(level), settings, players, hash_interval);
+    let mut recorder = Recorder::new(level_hash(level), settings, players, hash_interval)
+        .map_err(|e| format!("match recorder: {e}"))?;
     let mut script = Script::new(seed, usize::from(players));
     let mut shots = 0;
     for _ in 0..ticks {
@@ -193,7 +194,9 @@ pub fn play(
         world
             .step(&row)
             .map_err(|e| format!("match tick {}: {e}", world.tick() + 1))?;
-        recorder.record(&row, world.tick(), world.state_hash());
+        recorder
+            .record(&row, world.tick(), world.state_hash())
+            .map_err(|e| format!("match tick {}: {e}", world.tick()))?;
     }
     let replay = recorder.finish(world.tick(), world.state_hash());
     Ok(Played {

@@ -510,11 +510,11 @@ fn decode_hashes(r: &mut Reader<'_>, ticks: u32) -> Result<Vec<(u32, u64)>, Deco
 /// let level = Level::default_level();
 /// let settings = Settings::default();
 /// let mut world = World::new(&level, settings, 2)?;
-/// let mut rec = Recorder::new(level_hash(&level), settings, 2, 60);
+/// let mut rec = Recorder::new(level_hash(&level), settings, 2, 60)?;
 /// for tick in 0..90 {
 ///     let inputs = [Input { drive: 100, ..Input::default() }, Input::default()];
 ///     world.step(&inputs)?;
-///     rec.record(&inputs, world.tick(), world.state_hash());
+///     rec.record(&inputs, world.tick(), world.state_hash())?;
 /// }
 /// let replay = rec.finish(world.tick(), world.state_hash());
 /// assert_eq!(replay.ticks(), 90);
@@ -528,21 +528,25 @@ pub struct Recorder {
 
 impl Recorder {
     /// A recorder for `players` players that stores a state hash every `hash_interval`
-    /// ticks.
-    ///
-    /// # Panics
-    ///
-    /// If `players` is 0 or above [`FORMAT_MAX_PLAYERS`], or `hash_interval` is 0.
-    pub fn new(level_hash: u64, settings: Settings, players: u8, hash_interval: u32) -> Recorder {
-        assert!(
-            (1..=FORMAT_MAX_PLAYERS).contains(&players),
-            "a replay holds 1 to 8 players, not {players}"
-        );
-        assert!(
-            hash_interval > 0,
-            "the hash interval must be at least one tick"
-        );
-        Recorder {
+    /// ticks. Errors if `players` is 0 or above [`FORMAT_MAX_PLAYERS`], or `hash_interval`
+    /// is 0.
+    pub fn new(
+        level_hash: u64,
+        settings: Settings,
+        players: u8,
+        hash_interval: u32,
+    ) -> Result<Recorder, EncodeError> {
+        if !(1..=FORMAT_MAX_PLAYERS).contains(&players) {
+            return Err(EncodeError::Inconsistent {
+                detail: format!("a replay holds 1 to {FORMAT_MAX_PLAYERS} players, not {players}"),
+            });
+        }
+        if hash_interval == 0 {
+            return Err(EncodeError::Inconsistent {
+                detail: "the hash interval must be at least one tick".to_string(),
+            });
+        }
+        Ok(Recorder {
             replay: Replay {
                 level_hash,
                 settings,
@@ -552,22 +556,28 @@ impl Recorder {
                 hashes: Vec::new(),
             },
             since_hash: 0,
-        }
+        })
     }
 
     /// Records one tick: the inputs the world was stepped with, and its tick and state hash
     /// after the step. Invalid inputs are stored as [`Input::sanitized`] does (the
-    /// simulation treats them the same way), so the replay always encodes.
-    ///
-    /// # Panics
-    ///
-    /// If `inputs.len()` is not the number of players.
-    pub fn record(&mut self, inputs: &[Input], tick_after: u32, state_hash_after: u64) {
-        assert_eq!(
-            inputs.len(),
-            usize::from(self.replay.players),
-            "one input per player"
-        );
+    /// simulation treats them the same way), so the replay always encodes. Errors (and
+    /// records nothing) unless there is one input per player.
+    pub fn record(
+        &mut self,
+        inputs: &[Input],
+        tick_after: u32,
+        state_hash_after: u64,
+    ) -> Result<(), EncodeError> {
+        if inputs.len() != usize::from(self.replay.players) {
+            return Err(EncodeError::Inconsistent {
+                detail: format!(
+                    "{} inputs recorded for {} players",
+                    inputs.len(),
+                    self.replay.players
+                ),
+            });
+        }
         self.replay
             .inputs
             .extend(inputs.iter().map(|i| i.sanitized()));
@@ -576,6 +586,7 @@ impl Recorder {
             self.since_hash = 0;
             self.push_hash(tick_after, state_hash_after);
         }
+        Ok(())
     }
 
     /// Ticks recorded so far.
