@@ -10,7 +10,7 @@
 //! confirmed), `STATS ...`, and `DESYNC ...` for every desync GGRS reports.
 
 mod common;
-use common::splitmix64;
+use common::scripted_input;
 
 use std::io::Read;
 use std::net::UdpSocket;
@@ -20,7 +20,6 @@ use std::time::{Duration, Instant};
 
 use craterfield::field2d::Level;
 use craterfield::net::rollback::{P2PSession, Request, SessionBuilder, handle_request};
-use craterfield::sim::input::buttons::{FIRE, JUMP, STICK};
 use craterfield::sim::{Input, Settings, World};
 use ggrs::{
     DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, PlayerType, SessionState,
@@ -79,42 +78,6 @@ impl Peer {
             seed: f[4],
             desync_test: f[5] != 0,
         })
-    }
-}
-
-/// Player `player`'s input on `frame`, a pure function of its arguments: aim sweeping
-/// every frame (so predictions of the remote input are wrong all the time and the peers
-/// roll back constantly), fire on about a quarter of the frames, driving, jumps and stick
-/// toggles.
-fn scripted_input(seed: u64, player: usize, frame: u32) -> Input {
-    let segment = splitmix64(seed ^ ((player as u64) << 40) ^ u64::from(frame / 24));
-    let tick = splitmix64(segment ^ (u64::from(frame) << 20) ^ 0x5eed);
-    let base = if segment & 3 == 0 {
-        (segment >> 8) as u16
-    } else {
-        32768u16.wrapping_add((segment >> 8) as u16 / 2)
-    };
-    let throttle: i16 = if (segment >> 24) & 3 == 0 {
-        0
-    } else {
-        ((segment >> 28) % 255) as i16 - 127
-    };
-    let mut buttons = 0;
-    if tick & 3 == 0 {
-        buttons |= FIRE;
-    }
-    if (tick >> 8) & 15 == 0 {
-        buttons |= JUMP;
-    }
-    if (segment >> 36) & 7 == 0 && frame % 24 < 3 {
-        buttons |= STICK;
-    }
-    Input {
-        aim: base.wrapping_add((frame % 24) as u16 * 300),
-        buttons,
-        drive: throttle as i8,
-        power: 96 + ((segment >> 44) % 160) as u8,
-        weapon: ((tick >> 16) & 1) as u8,
     }
 }
 

@@ -6,52 +6,13 @@
 //! state of a plain run of the same inputs without any rollback.
 
 mod common;
-use common::splitmix64;
+use common::scripted_input;
 
 use craterfield::field2d::Level;
 use craterfield::net::rollback::{SessionBuilder, handle_requests};
-use craterfield::sim::input::buttons::{FIRE, JUMP, STICK};
 use craterfield::sim::{Input, Settings, World};
 
 const FRAMES: u32 = 1200;
-
-/// Player `player`'s input on `frame`: a pure function of its arguments. Aim, throttle,
-/// weapon and power hold for segments of 24 frames; fire is pressed on about a quarter of
-/// the frames (a new shot every few ticks with the lowered cooldowns), jumps and stick
-/// toggles now and then.
-fn scripted_input(seed: u64, player: usize, frame: u32) -> Input {
-    let segment = splitmix64(seed ^ ((player as u64) << 40) ^ u64::from(frame / 24));
-    let tick = splitmix64(segment ^ (u64::from(frame) << 20) ^ 0x5eed);
-    // Mostly down and sideways (craters in the ground nearby), sometimes anywhere.
-    let base = if segment & 3 == 0 {
-        (segment >> 8) as u16
-    } else {
-        32768u16.wrapping_add((segment >> 8) as u16 / 2)
-    };
-    let aim = base.wrapping_add((frame % 24) as u16 * 300);
-    let throttle: i16 = if (segment >> 24) & 3 == 0 {
-        0
-    } else {
-        ((segment >> 28) % 255) as i16 - 127
-    };
-    let mut buttons = 0;
-    if tick & 3 == 0 {
-        buttons |= FIRE;
-    }
-    if (tick >> 8) & 15 == 0 {
-        buttons |= JUMP;
-    }
-    if (segment >> 36) & 7 == 0 && frame % 24 < 3 {
-        buttons |= STICK;
-    }
-    Input {
-        aim,
-        buttons,
-        drive: throttle as i8,
-        power: 96 + ((segment >> 44) % 160) as u8,
-        weapon: ((tick >> 16) & 1) as u8,
-    }
-}
 
 fn settings() -> Settings {
     let mut s = Settings::default();

@@ -31,22 +31,32 @@ const ROLLBACK_DISTANCE: u32 = 8;
 /// Fewest match events for the match to be the wire figure's source.
 const MIN_MATCH_EVENTS: usize = 100;
 
-/// What to measure.
+/// What to measure (the command's arguments).
+#[derive(clap::Args)]
 pub struct Options {
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
     pub json: bool,
-    /// Bodies (vehicles included) per row.
+    /// Body counts of the rows (vehicles included), comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "100,1000,10000")]
     pub bodies: Vec<usize>,
     /// Timed ticks per row.
+    #[arg(long, default_value_t = 120)]
     pub ticks: u32,
-    /// Untimed ticks before them.
+    /// Untimed ticks before the timed ones.
+    #[arg(long, default_value_t = 60)]
     pub warmup: u32,
     /// Explosions applied to the terrain first.
+    #[arg(long, default_value_t = 10_000)]
     pub explosions: usize,
-    /// Bodies of the snapshot and restore world.
+    /// Bodies in the snapshot and restore world.
+    #[arg(long, default_value_t = 1000)]
     pub snapshot_bodies: usize,
-    /// Snapshot and restore repetitions.
+    /// Snapshot and restore repetitions (medians are reported).
+    #[arg(long, default_value_t = 300)]
     pub reps: usize,
-    /// Length of the scripted match for the replay and wire figures.
+    /// Length in seconds of the scripted match measured for replay and wire sizes.
+    #[arg(long, default_value_t = 60)]
     pub match_seconds: u32,
 }
 

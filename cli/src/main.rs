@@ -148,32 +148,7 @@ enum BenchCommand {
     },
     /// The simulation: ms per tick by body count, snapshot and restore, replay and wire
     /// sizes, on the default level after 10,000 explosions, one thread.
-    Sim {
-        /// Print one JSON object instead of a table.
-        #[arg(long)]
-        json: bool,
-        /// Body counts of the rows (vehicles included), comma-separated.
-        #[arg(long, value_delimiter = ',', default_value = "100,1000,10000")]
-        bodies: Vec<usize>,
-        /// Timed ticks per row.
-        #[arg(long, default_value_t = 120)]
-        ticks: u32,
-        /// Untimed ticks before the timed ones.
-        #[arg(long, default_value_t = 60)]
-        warmup: u32,
-        /// Explosions applied to the terrain first.
-        #[arg(long, default_value_t = 10_000)]
-        explosions: usize,
-        /// Bodies in the snapshot and restore world.
-        #[arg(long, default_value_t = 1000)]
-        snapshot_bodies: usize,
-        /// Snapshot and restore repetitions (medians are reported).
-        #[arg(long, default_value_t = 300)]
-        reps: usize,
-        /// Length in seconds of the scripted match measured for replay and wire sizes.
-        #[arg(long, default_value_t = 60)]
-        match_seconds: u32,
-    },
+    Sim(bench_sim::Options),
 }
 
 /// Ticks of the demo's scripted match (20 s at 60 Hz).
@@ -231,27 +206,8 @@ fn main() -> ExitCode {
             tiles,
         }),
         Command::Bench {
-            command:
-                BenchCommand::Sim {
-                    json,
-                    bodies,
-                    ticks,
-                    warmup,
-                    explosions,
-                    snapshot_bodies,
-                    reps,
-                    match_seconds,
-                },
-        } => bench_sim::sim(bench_sim::Options {
-            json,
-            bodies,
-            ticks,
-            warmup,
-            explosions,
-            snapshot_bodies,
-            reps,
-            match_seconds,
-        }),
+            command: BenchCommand::Sim(options),
+        } => bench_sim::sim(options),
     };
     match result {
         Ok(code) => code,

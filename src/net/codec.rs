@@ -166,6 +166,28 @@ impl<'a> Reader<'a> {
         self.buf.len() - self.pos
     }
 
+    /// Fails unless `count` elements of at least `min_bytes` each fit in what is left (the
+    /// error at offset `at`, where the count was read), so no count can make a decoder
+    /// allocate more than the input justifies.
+    pub(crate) fn check_fits(
+        &self,
+        at: usize,
+        count: u64,
+        min_bytes: usize,
+    ) -> Result<(), DecodeError> {
+        let needed = count.saturating_mul(min_bytes as u64);
+        if needed > self.remaining() as u64 {
+            return Err(self.error_at(
+                at,
+                DecodeErrorKind::Truncated {
+                    needed: usize::try_from(needed).unwrap_or(usize::MAX),
+                    available: self.remaining(),
+                },
+            ));
+        }
+        Ok(())
+    }
+
     /// An error at the current position.
     pub(crate) fn error(&self, kind: DecodeErrorKind) -> DecodeError {
         self.error_at(self.offset(), kind)

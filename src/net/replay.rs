@@ -466,16 +466,7 @@ fn read_input_change(r: &mut Reader<'_>, old: Input) -> Result<Input, DecodeErro
 fn decode_hashes(r: &mut Reader<'_>, ticks: u32) -> Result<Vec<(u32, u64)>, DecodeError> {
     let at = r.offset();
     let count = r.varint_max("hash count", u64::from(ticks) + 1)?;
-    let needed = count.saturating_mul(MIN_HASH_ENTRY as u64);
-    if needed > r.remaining() as u64 {
-        return Err(r.error_at(
-            at,
-            DecodeErrorKind::Truncated {
-                needed: usize::try_from(needed).unwrap_or(usize::MAX),
-                available: r.remaining(),
-            },
-        ));
-    }
+    r.check_fits(at, count, MIN_HASH_ENTRY)?;
     let mut hashes = Vec::new();
     let mut tick = 0u32;
     for i in 0..count {

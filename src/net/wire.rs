@@ -383,22 +383,6 @@ fn write_shape(w: &mut Writer, s: &Shape) {
     w.varint(s.material.into());
 }
 
-/// Fails unless `count` elements of at least `min_bytes` each fit in what is left, so no
-/// count can make the decoder allocate more than the input justifies.
-fn check_fits(r: &Reader<'_>, at: usize, count: u64, min_bytes: usize) -> Result<(), DecodeError> {
-    let needed = count.saturating_mul(min_bytes as u64);
-    if needed > r.remaining() as u64 {
-        return Err(r.error_at(
-            at,
-            DecodeErrorKind::Truncated {
-                needed: usize::try_from(needed).unwrap_or(usize::MAX),
-                available: r.remaining(),
-            },
-        ));
-    }
-    Ok(())
-}
-
 fn read_event_list(r: &mut Reader<'_>, limits: &DecodeLimits) -> Result<Vec<Event>, DecodeError> {
     r.enter("event list", None);
     let at = r.offset();
@@ -408,7 +392,7 @@ fn read_event_list(r: &mut Reader<'_>, limits: &DecodeLimits) -> Result<Vec<Even
         let (q, origin) = read_grid(r)?;
         let shapes = read_shapes(r, count)?;
         r.enter("event list", None);
-        check_fits(r, at, count, MIN_EVENT_BYTES)?;
+        r.check_fits(at, count, MIN_EVENT_BYTES)?;
         let mut tick = 0u32;
         for i in 0..count {
             r.enter("event", Some(i));
@@ -452,7 +436,7 @@ fn read_shapes(r: &mut Reader<'_>, events: u64) -> Result<Vec<Shape>, DecodeErro
     if count == 0 {
         return Err(r.error_at(at, codec::malformed("no shapes for a non-empty event list")));
     }
-    check_fits(r, at, count, MIN_SHAPE_BYTES)?;
+    r.check_fits(at, count, MIN_SHAPE_BYTES)?;
     let mut shapes = Vec::new();
     for i in 0..count {
         r.enter("shape", Some(i));

@@ -96,6 +96,29 @@ pub struct Body {
 }
 
 impl Body {
+    /// A unit-mass circle at rest at `pos`, frictionless and without bounce, with 1 health
+    /// and no contact history; the kinds' constructors change what differs.
+    pub fn new(id: u32, kind: BodyKind, pos: Vec2, radius: f32) -> Body {
+        Body {
+            id,
+            kind,
+            pos,
+            vel: Vec2::ZERO,
+            axis: Vec2::X,
+            radius,
+            half_length: 0.0,
+            inv_mass: 1.0,
+            friction: 0.0,
+            restitution: 0.0,
+            health: 1,
+            drive: 0.0,
+            ground: Vec2::ZERO,
+            surface: Vec2::ZERO,
+            clearance: f32::MAX,
+            probes: [None; 2],
+        }
+    }
+
     /// The two ends of the body's segment (equal for a circle).
     pub fn segment(&self) -> (Vec2, Vec2) {
         let h = self.axis * self.half_length;

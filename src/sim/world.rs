@@ -12,7 +12,7 @@ use std::collections::VecDeque;
 use glam::Vec2;
 use thiserror::Error;
 
-use crate::field2d::detmath::{cos_turns, min, sin_turns};
+use crate::field2d::detmath::{cos_turns, sin_turns};
 use crate::field2d::event::{Event, EventKind};
 use crate::field2d::simd::{Backend, BackendError};
 use crate::field2d::tape::EvalError;
@@ -198,31 +198,21 @@ impl World {
 
     fn push_vehicle(&mut self, player: u8, at: Vec2) {
         let v = self.settings.vehicle;
+        let kind = BodyKind::Vehicle {
+            player,
+            prev_buttons: 0,
+            cooldown: 0,
+            stick: false,
+        };
         let body = Body {
-            id: self.next_id,
-            kind: BodyKind::Vehicle {
-                player,
-                prev_buttons: 0,
-                cooldown: 0,
-                stick: false,
-            },
-            pos: at,
-            vel: Vec2::ZERO,
-            axis: Vec2::X,
-            radius: units(v.radius),
             half_length: units(v.half_length),
             inv_mass: 1.0 / units(v.mass),
             friction: units(v.friction),
             restitution: units(v.restitution),
             health: v.health,
-            drive: 0.0,
-            ground: Vec2::ZERO,
-            surface: Vec2::ZERO,
-            clearance: f32::MAX,
-            probes: [None; 2],
+            ..Body::new(self.next_id, kind, at, units(v.radius))
         };
-        self.next_id += 1;
-        self.bodies.push(body);
+        self.push(body);
     }
 
     /// Adds a passive circular body (debris) at `at`; returns its id.
@@ -240,26 +230,18 @@ impl World {
             return Err(bad("the world already holds max_bodies bodies"));
         }
         let id = self.next_id;
-        self.bodies.push(Body {
-            id,
-            kind: BodyKind::Debris,
-            pos: at,
-            vel: Vec2::ZERO,
-            axis: Vec2::X,
-            radius,
-            half_length: 0.0,
-            inv_mass: 1.0,
+        self.push(Body {
             friction: units(self.settings.vehicle.friction),
             restitution: units(self.settings.vehicle.restitution),
-            health: 1,
-            drive: 0.0,
-            ground: Vec2::ZERO,
-            surface: Vec2::ZERO,
-            clearance: f32::MAX,
-            probes: [None; 2],
+            ..Body::new(id, BodyKind::Debris, at, radius)
         });
-        self.next_id += 1;
         Ok(id)
+    }
+
+    /// Adds a body built with the next id.
+    fn push(&mut self, body: Body) {
+        self.next_id += 1;
+        self.bodies.push(body);
     }
 
     /// Applies a destruction event from outside (an authoritative server's stream, a late
@@ -478,28 +460,15 @@ impl World {
         let dir = Vec2::new(cos_turns(t), sin_turns(t));
         let radius = units(w.radius);
         let speed = units(w.speed) * (f32::from(input.power) / 255.0);
-        self.bodies.push(Body {
-            id: self.next_id,
-            kind: BodyKind::Projectile {
-                owner,
-                weapon: input.weapon,
-            },
-            pos: pos + dir * (reach + radius + 1.0),
+        let kind = BodyKind::Projectile {
+            owner,
+            weapon: input.weapon,
+        };
+        let at = pos + dir * (reach + radius + 1.0);
+        self.push(Body {
             vel: vel + dir * speed,
-            axis: Vec2::X,
-            radius,
-            half_length: 0.0,
-            inv_mass: 1.0,
-            friction: 0.0,
-            restitution: 0.0,
-            health: 1,
-            drive: 0.0,
-            ground: Vec2::ZERO,
-            surface: Vec2::ZERO,
-            clearance: f32::MAX,
-            probes: [None; 2],
+            ..Body::new(self.next_id, kind, at, radius)
         });
-        self.next_id += 1;
     }
 
     /// Gravity (or the stick pull), wind on projectiles, and the speed limit.
@@ -762,7 +731,7 @@ fn sample_all(
     threads: usize,
 ) -> Result<(), EvalError> {
     const MIN_CHUNK: usize = 256;
-    let chunks = min(threads as f32, (points.len() / MIN_CHUNK).max(1) as f32) as usize;
+    let chunks = threads.min(points.len() / MIN_CHUNK);
     if chunks <= 1 {
         return terrain.samples(points, out);
     }

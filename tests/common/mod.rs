@@ -2,6 +2,9 @@
 //! dependency. Each test binary uses part of it.
 #![allow(dead_code)]
 
+use craterfield::sim::Input;
+use craterfield::sim::input::buttons::{FIRE, JUMP, STICK};
+
 /// One SplitMix64 step: a well-mixed function of `x`.
 pub fn splitmix64(mut x: u64) -> u64 {
     x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
@@ -29,5 +32,43 @@ impl Rng {
     /// Uniform in `[0, 1)`, 24 bits.
     pub fn unit(&mut self) -> f32 {
         (self.next() >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// Player `player`'s input on `frame`: a pure function of its arguments. Aim, throttle,
+/// weapon and power hold for segments of 24 frames; fire is pressed on about a quarter of
+/// the frames (a new shot every few ticks with the lowered cooldowns), jumps and stick
+/// toggles now and then.
+pub fn scripted_input(seed: u64, player: usize, frame: u32) -> Input {
+    let segment = splitmix64(seed ^ ((player as u64) << 40) ^ u64::from(frame / 24));
+    let tick = splitmix64(segment ^ (u64::from(frame) << 20) ^ 0x5eed);
+    // Mostly down and sideways (craters in the ground nearby), sometimes anywhere.
+    let base = if segment & 3 == 0 {
+        (segment >> 8) as u16
+    } else {
+        32768u16.wrapping_add((segment >> 8) as u16 / 2)
+    };
+    let aim = base.wrapping_add((frame % 24) as u16 * 300);
+    let throttle: i16 = if (segment >> 24) & 3 == 0 {
+        0
+    } else {
+        ((segment >> 28) % 255) as i16 - 127
+    };
+    let mut buttons = 0;
+    if tick & 3 == 0 {
+        buttons |= FIRE;
+    }
+    if (tick >> 8) & 15 == 0 {
+        buttons |= JUMP;
+    }
+    if (segment >> 36) & 7 == 0 && frame % 24 < 3 {
+        buttons |= STICK;
+    }
+    Input {
+        aim,
+        buttons,
+        drive: throttle as i8,
+        power: 96 + ((segment >> 44) % 160) as u8,
+        weapon: ((tick >> 16) & 1) as u8,
     }
 }

@@ -58,6 +58,11 @@ impl TerrainMark {
         self.pos
     }
 
+    /// The grid's counters at the mark.
+    pub(crate) fn stats(&self) -> GridStats {
+        self.stats
+    }
+
     /// Events in the log at the mark.
     pub fn events(&self) -> u32 {
         self.events
@@ -148,11 +153,6 @@ impl Journal {
         } else {
             None
         }
-    }
-
-    /// The counters to restore for `m`.
-    pub(crate) fn stats_of(m: &TerrainMark) -> GridStats {
-        m.stats
     }
 
     /// Forgets the entries before `m` (marks older than it become [`RollbackError::TooOld`]).

@@ -602,7 +602,7 @@ impl<F: Sdf> Terrain<F> {
         {
             self.undo(entry);
         }
-        self.grid.stats = Journal::stats_of(mark);
+        self.grid.stats = mark.stats();
         Ok(())
     }
 
