@@ -1,11 +1,16 @@
 //! Rendering the terrain to pixels.
 //!
 //! [`exact`] is the CPU ground truth: the exact field evaluated at every pixel, anti-aliased
-//! and shaded. The reduced-scale GPU pipeline and its CPU twin are measured against it.
+//! and shaded. The reduced-scale pipeline (SDF pass at 1/16 scale, reconstruction, upsample
+//! and shade) is configured by [`options`], laid out by [`lattice`], and measured against it.
 
 pub mod camera;
 pub mod exact;
+pub mod lattice;
+pub mod options;
 pub mod overlay;
 
 pub use camera::Camera;
 pub use exact::{ExactRenderOptions, render_exact};
+pub use lattice::{Lattice, LatticeError};
+pub use options::{Reconstruction, RenderOptions, Scale, ShadeOptions, Upsample};
