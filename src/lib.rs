@@ -5,11 +5,14 @@
 //! Everything on the collision path is bit-for-bit deterministic (see `DESIGN.md`).
 #![warn(missing_docs)]
 
+pub mod emit;
 pub mod field2d;
 pub mod net;
 #[cfg(feature = "raster")]
 pub mod render2d;
 pub mod sim;
+#[cfg(feature = "raster")]
+pub mod visdiff;
 
 /// The README's code examples, compiled and run as doctests.
 #[doc = include_str!("../README.md")]
