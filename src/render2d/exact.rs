@@ -9,6 +9,8 @@ use glam::Vec2;
 use image::RgbaImage;
 
 use super::camera::Camera;
+use super::options::ShadeOptions;
+use super::twin::Shader;
 use crate::field2d::Sdf;
 
 /// Shading parameters.
@@ -37,6 +39,19 @@ impl Default for ExactRenderOptions {
             shade_depth_px: 28.0,
             light: Vec2::new(-0.35, 0.94),
             threads: 0,
+        }
+    }
+}
+
+impl ExactRenderOptions {
+    /// The shading part of the options (the pipeline's [`ShadeOptions`]).
+    pub fn shade_options(&self) -> ShadeOptions {
+        ShadeOptions {
+            sky_top: self.sky_top,
+            sky_bottom: self.sky_bottom,
+            outline_px: self.outline_px,
+            shade_depth_px: self.shade_depth_px,
+            light: self.light,
         }
     }
 }
@@ -71,19 +86,18 @@ pub fn render_exact<F: Sdf + Sync>(
     while bands.peek().is_some() {
         groups.push(bands.by_ref().take(per_thread).collect());
     }
-    let shader = Shader {
+    let painter = Painter {
         field,
         palette,
         camera,
-        opts,
-        light: opts.light.normalize_or(Vec2::Y),
+        shader: Shader::new(&opts.shade_options(), camera.height),
     };
     std::thread::scope(|s| {
         for group in groups {
-            let shader = &shader;
+            let painter = &painter;
             s.spawn(move || {
                 for (band, bytes) in group {
-                    shader.band(band, bytes);
+                    painter.band(band, bytes);
                 }
             });
         }
@@ -91,15 +105,14 @@ pub fn render_exact<F: Sdf + Sync>(
     img
 }
 
-struct Shader<'a, F> {
+struct Painter<'a, F> {
     field: &'a F,
     palette: &'a [[u8; 3]],
     camera: &'a Camera,
-    opts: &'a ExactRenderOptions,
-    light: Vec2,
+    shader: Shader,
 }
 
-impl<F: Sdf> Shader<'_, F> {
+impl<F: Sdf> Painter<'_, F> {
     fn band(&self, band: u32, bytes: &mut [u8]) {
         let w = self.camera.width;
         let y0 = band * TILE;
@@ -117,7 +130,7 @@ impl<F: Sdf> Shader<'_, F> {
             for y in y0..y0 + rows {
                 for x in x0..(x0 + TILE).min(w) {
                     let rgb = if all_sky {
-                        self.sky(y)
+                        self.shader.sky_rgb(y)
                     } else {
                         self.pixel(x, y)
                     };
@@ -128,51 +141,18 @@ impl<F: Sdf> Shader<'_, F> {
         }
     }
 
-    fn sky(&self, y: u32) -> [u8; 3] {
-        let t = y as f32 / self.camera.height.max(1) as f32;
-        mix(self.opts.sky_top, self.opts.sky_bottom, t)
-    }
-
+    /// The exact field at the pixel, shaded by the pipeline's formula (the gradient is
+    /// only evaluated where the colour depends on it).
     fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
         let p = self.camera.pixel_to_world(x, y);
-        let upp = self.camera.units_per_pixel;
         let (d, material) = self.field.distance_material(p);
-        let d_px = d / upp;
-        let coverage = (0.5 - d_px).clamp(0.0, 1.0);
-        let sky = self.sky(y);
-        if coverage <= 0.0 {
-            return sky;
-        }
-        let base = self
-            .palette
-            .get(material as usize)
-            .copied()
-            .unwrap_or([255, 0, 255]);
-        let depth = (-d_px / self.opts.shade_depth_px).clamp(0.0, 1.0);
-        let mut color = scale(base, 1.0 - 0.4 * depth);
-        let near_surface = d_px > -(self.opts.shade_depth_px * 0.5);
-        if near_surface {
-            let g = self.field.sample(p).gradient;
-            let lit = if g.length_squared() > 0.0 {
-                g.normalize().dot(self.light)
-            } else {
-                0.0
-            };
-            // Surfaces facing the light get a bright rim, others a darker one.
-            let rim = (1.0 + d_px / (self.opts.shade_depth_px * 0.5)).clamp(0.0, 1.0);
-            color = scale(color, 1.0 + 0.35 * lit * rim);
-        }
-        let outline = ((d_px + self.opts.outline_px + 0.5).clamp(0.0, 1.0)) * coverage;
-        color = mix(color, scale(base, 0.35), outline);
-        mix(sky, color, coverage)
+        let d_px = d / self.camera.units_per_pixel;
+        let normal = if self.shader.needs_normal(d_px) {
+            self.field.sample(p).gradient.normalize_or_zero()
+        } else {
+            Vec2::ZERO
+        };
+        let base = self.palette.get(usize::from(material)).copied();
+        self.shader.shade(d_px, normal, base, self.shader.sky(y))
     }
-}
-
-fn scale(c: [u8; 3], k: f32) -> [u8; 3] {
-    c.map(|v| (v as f32 * k).round().clamp(0.0, 255.0) as u8)
-}
-
-fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
-    let t = t.clamp(0.0, 1.0);
-    [0, 1, 2].map(|i| (a[i] as f32 + (b[i] as f32 - a[i] as f32) * t).round() as u8)
 }
