@@ -10,14 +10,14 @@ use std::time::Instant;
 use craterfield::field2d::terrain::Terrain;
 use craterfield::field2d::{Level, Sdf};
 use craterfield::render2d::overlay::draw_markers;
-use craterfield::render2d::{Camera, ExactRenderOptions, render_exact};
+use craterfield::render2d::{Camera, RenderOptions};
 use glam::Vec2;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::barrage::{self, BarrageStats};
 use crate::rng::Rng;
-use crate::{frame, script};
+use crate::{frame, render_frame, script};
 
 /// Players of the demo match.
 const MATCH_PLAYERS: u8 = 4;
@@ -91,6 +91,8 @@ struct ImageInfo {
     path: String,
     width: u32,
     height: u32,
+    /// Which renderer drew it (GPU pipeline or its CPU twin).
+    renderer: String,
 }
 
 pub fn run(
@@ -139,7 +141,8 @@ pub fn run(
     );
     let palette: Vec<[u8; 3]> = level.materials().iter().map(|m| m.color).collect();
     let t = Instant::now();
-    let mut img = render_exact(&terrain, &palette, &camera, &ExactRenderOptions::default());
+    let drawn = render_frame::render(&terrain, &palette, &camera, &RenderOptions::default())?;
+    let mut img = drawn.image;
     let render_ms = t.elapsed().as_secs_f64() * 1e3;
     let spawns: Vec<Vec2> = level.spawns().collect();
     draw_markers(&mut img, &camera, &spawns, 10.0, [250, 240, 90]);
@@ -184,6 +187,7 @@ pub fn run(
             path: png.display().to_string(),
             width: camera.width,
             height: camera.height,
+            renderer: drawn.renderer.clone(),
         },
         match_: match_summary,
     };
@@ -206,11 +210,12 @@ pub fn run(
         grid.cells, grid.max_cell_events, grid.bricks, summary.field.solid_fraction
     );
     println!(
-        "  wrote {} ({}x{}, rendered in {:.0} ms) and {}",
+        "  wrote {} ({}x{}, rendered in {:.0} ms by the {}) and {}",
         png.display(),
         camera.width,
         camera.height,
         render_ms,
+        drawn.renderer,
         json_path.display()
     );
     match (&summary.match_, match_note) {
@@ -285,6 +290,7 @@ fn play_match(
             path: png.display().to_string(),
             width: img.width(),
             height: img.height(),
+            renderer: "CPU exact renderer (match picture with bodies)".to_string(),
         },
     })))
 }

@@ -4,11 +4,16 @@
 mod barrage;
 mod bench;
 mod bench_eval;
+mod bench_fidelity;
+mod bench_render2d;
 mod bench_sim;
 mod demo;
+mod diff_cmd;
+mod fidelity_scenes;
 mod frame;
 #[cfg(feature = "peers")]
 mod peers;
+mod render_frame;
 mod replay_cmd;
 mod rng;
 mod script;
@@ -60,6 +65,9 @@ enum Command {
         #[command(subcommand)]
         command: LevelCommand,
     },
+    /// Compare two images (pixel statistics and the FLIP perceptual score): exit 0 when
+    /// within the thresholds, 1 when over, 2 when they cannot be compared.
+    Diff(diff_cmd::Options),
     /// Release-mode benchmarks.
     Bench {
         #[command(subcommand)]
@@ -149,6 +157,13 @@ enum BenchCommand {
     /// The simulation: ms per tick by body count, snapshot and restore, replay and wire
     /// sizes, on the default level after 10,000 explosions, one thread.
     Sim(bench_sim::Options),
+    /// Fidelity of the reduced-scale pipeline per reconstruction method and scale against
+    /// exact evaluation: mismatched pixels, thin-feature recall, contour offset.
+    Fidelity(bench_fidelity::Options),
+    /// Render times at 1920x1080 on the default level after 10,000 explosions: full-resolution
+    /// direct evaluation vs the reduced-scale pipeline at every scale and mode on the GPU, and
+    /// the CPU twin.
+    Render2d(bench_render2d::Options),
 }
 
 /// Ticks of the demo's scripted match (20 s at 60 Hz).
@@ -184,6 +199,7 @@ fn main() -> ExitCode {
         Command::Level {
             command: LevelCommand::Check { file },
         } => level_check(&file),
+        Command::Diff(options) => diff_cmd::run(&options),
         Command::Bench {
             command: BenchCommand::Field { json, points },
         } => bench::field(json, points),
@@ -208,6 +224,12 @@ fn main() -> ExitCode {
         Command::Bench {
             command: BenchCommand::Sim(options),
         } => bench_sim::sim(options),
+        Command::Bench {
+            command: BenchCommand::Fidelity(options),
+        } => bench_fidelity::fidelity(&options),
+        Command::Bench {
+            command: BenchCommand::Render2d(options),
+        } => bench_render2d::run(&options),
     };
     match result {
         Ok(code) => code,

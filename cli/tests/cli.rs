@@ -1,8 +1,9 @@
 //! The command-line tool end to end: the demo writes its image and summary, `level check`
 //! accepts good levels and names the problem in bad ones, the demo's match replay verifies
 //! and damaged replays are refused with a message (never a panic), `replay render` writes
-//! the picture asked for, and `bench field --json` and `bench sim --json` print the
-//! documented keys.
+//! the picture asked for, `bench field --json`, `bench sim --json` and
+//! `bench fidelity --json` print the documented keys, and `diff` exits 0, 1 or 2 as
+//! documented.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -327,4 +328,152 @@ fn bench_sim_json_has_the_documented_keys() {
     }
     assert!(v["bytes_per_event"].as_f64().unwrap() <= 16.0, "{v}");
     assert_eq!(v["explosions"], 200, "{v}");
+}
+
+/// A 96x64 PNG with a sky gradient and a box whose colour is `fill`.
+fn write_diff_image(path: &Path, fill: [u8; 3], width: u32) {
+    let img = image::RgbaImage::from_fn(width, 64, |x, y| {
+        if (30..60).contains(&x) && (20..40).contains(&y) {
+            image::Rgba([fill[0], fill[1], fill[2], 255])
+        } else {
+            image::Rgba([40, 60 + y as u8, 150, 255])
+        }
+    });
+    img.save(path).unwrap();
+}
+
+#[test]
+fn diff_exits_0_within_and_1_over_the_thresholds() {
+    let dir = temp_dir("diff");
+    let (a, b) = (dir.join("a.png"), dir.join("b.png"));
+    write_diff_image(&a, [200, 120, 60], 96);
+    write_diff_image(&b, [90, 200, 60], 96);
+
+    let same = craterfield()
+        .arg("diff")
+        .arg(&a)
+        .arg(&a)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert_eq!(same.status.code(), Some(0), "{}", text(&same.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&same.stdout).unwrap();
+    assert_eq!(json["passed"], true);
+    assert_eq!(json["differing_pixels"], 0);
+    assert_eq!(json["flip"], 0.0);
+
+    let heat = dir.join("heat.png");
+    let over = craterfield()
+        .arg("diff")
+        .arg(&a)
+        .arg(&b)
+        .arg("--out")
+        .arg(&heat)
+        .output()
+        .unwrap();
+    assert_eq!(over.status.code(), Some(1), "{}", text(&over.stderr));
+    let stdout = text(&over.stdout);
+    // The box is 30x20 = 600 of 6144 pixels.
+    assert!(stdout.contains("600 differ by more than 2"), "{stdout}");
+    assert!(stdout.contains("FAIL: differing_fraction"), "{stdout}");
+    let heat_img = image::open(&heat).unwrap().to_rgba8();
+    assert_eq!(heat_img.dimensions(), (96, 64));
+    assert_eq!(heat_img.get_pixel(5, 5).0, [0, 0, 0, 255]);
+    assert_ne!(heat_img.get_pixel(40, 30).0, [0, 0, 0, 255]);
+
+    let loose = craterfield()
+        .arg("diff")
+        .arg(&a)
+        .arg(&b)
+        .args([
+            "--tolerance",
+            "255",
+            "--max-mean",
+            "255",
+            "--max-percentile",
+            "255",
+        ])
+        .args(["--max-flip", "1", "--json"])
+        .output()
+        .unwrap();
+    assert_eq!(loose.status.code(), Some(0), "{}", text(&loose.stdout));
+    let json: serde_json::Value = serde_json::from_slice(&loose.stdout).unwrap();
+    assert_eq!(json["differing_pixels"], 0);
+    assert!(json["mean"].as_f64().unwrap() > 5.0, "{json}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn diff_exits_2_on_unreadable_or_mismatched_images() {
+    let dir = temp_dir("diff-bad");
+    let (a, small, garbage) = (
+        dir.join("a.png"),
+        dir.join("small.png"),
+        dir.join("junk.png"),
+    );
+    write_diff_image(&a, [200, 120, 60], 96);
+    write_diff_image(&small, [200, 120, 60], 80);
+    std::fs::write(&garbage, b"not a png at all").unwrap();
+    let cases: [(&Path, &str); 3] = [
+        (&dir.join("missing.png"), "missing.png"),
+        (&garbage, "junk.png"),
+        (&small, "96x64"),
+    ];
+    for (other, needle) in cases {
+        let out = craterfield()
+            .arg("diff")
+            .arg(&a)
+            .arg(other)
+            .output()
+            .unwrap();
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{needle}: {stderr}");
+        assert!(
+            stderr.contains(needle) && !stderr.contains("panicked"),
+            "{stderr}"
+        );
+    }
+    let nan = craterfield()
+        .arg("diff")
+        .arg(&a)
+        .arg(&a)
+        .args(["--max-mean", "NaN"])
+        .output()
+        .unwrap();
+    assert_eq!(nan.status.code(), Some(2));
+    assert!(
+        text(&nan.stderr).contains("max_mean"),
+        "{}",
+        text(&nan.stderr)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bench_fidelity_json_has_the_documented_keys() {
+    let out = craterfield()
+        .args(["bench", "fidelity", "--json", "--scenes", "islands,corners"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2 * 4 * 4, "2 scenes x 4 methods x 4 scales");
+    for row in rows {
+        for key in ["scene", "method", "scale", "mismatch_pct", "mean_offset_px"] {
+            assert!(!row[key].is_null(), "{key} in {row}");
+        }
+        for key in ["solid_recall", "gap_recall", "max_offset_px"] {
+            assert!(row.get(key).is_some(), "{key} in {row}");
+        }
+        let mismatch = row["mismatch_pct"].as_f64().unwrap();
+        assert!((0.0..=100.0).contains(&mismatch), "{row}");
+    }
+    let methods = ["bilinear", "bicubic", "divergence", "planes"];
+    assert!(methods.contains(&json["best"].as_str().unwrap()), "{json}");
+    let corners = rows
+        .iter()
+        .find(|r| r["scene"] == "corners" && r["method"] == "planes" && r["scale"] == 16)
+        .unwrap();
+    assert!(corners["gap_recall"].as_f64().is_some(), "{corners}");
 }

@@ -6,11 +6,16 @@
 
 pub mod camera;
 pub mod exact;
+pub mod fidelity;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod lattice;
 pub mod options;
 pub mod overlay;
+pub mod twin;
 
 pub use camera::Camera;
 pub use exact::{ExactRenderOptions, render_exact};
 pub use lattice::{Lattice, LatticeError};
 pub use options::{Reconstruction, RenderOptions, Scale, ShadeOptions, Upsample};
+pub use twin::{FieldImage, LowRes, Texel, TwinError, field_image, render_twin};

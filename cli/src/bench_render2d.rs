@@ -1,0 +1,291 @@
+//! `craterfield bench render2d`: frame times at 1920x1080 on the default level after 10,000
+//! explosions, side by side in one run on the adapter wgpu finds: full-resolution direct
+//! evaluation vs the reduced-scale pipeline at every scale and mode (GPU time from timestamp
+//! queries where the device has them, else wall time with a sync per frame), and the CPU
+//! twin's frame time.
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use craterfield::field2d::{Graph, Level, Terrain};
+use craterfield::render2d::gpu::readback::Offscreen;
+use craterfield::render2d::gpu::timing::Timestamps;
+use craterfield::render2d::gpu::{GpuContext, GpuError, TerrainRenderer};
+use craterfield::render2d::twin::render_twin;
+use craterfield::render2d::{Camera, Reconstruction, RenderOptions, Scale, Upsample};
+use glam::Vec2;
+use serde::Serialize;
+
+use crate::barrage;
+
+/// Options of `bench render2d`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Options {
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Explosions fired into the default level first.
+    #[arg(long, default_value_t = 10_000)]
+    pub explosions: usize,
+    /// Timed frames per configuration (after two warm-up frames).
+    #[arg(long, default_value_t = 8)]
+    pub frames: u32,
+    /// Image width.
+    #[arg(long, default_value_t = 1920)]
+    pub width: u32,
+    /// Image height.
+    #[arg(long, default_value_t = 1080)]
+    pub height: u32,
+}
+
+#[derive(Serialize)]
+struct Row {
+    pipeline: &'static str,
+    scale: u32,
+    mode: String,
+    ms: f64,
+}
+
+#[derive(Serialize)]
+struct Report {
+    adapter: String,
+    timing: &'static str,
+    rows: Vec<Row>,
+    cpu_twin_ms: f64,
+    cpu_twin_threads: usize,
+}
+
+const MODES: [(Reconstruction, Upsample, &str); 4] = [
+    (Reconstruction::Off, Upsample::Bilinear, "off-bilinear"),
+    (Reconstruction::Off, Upsample::BSpline, "off"),
+    (Reconstruction::Divergence, Upsample::BSpline, "divergence"),
+    (Reconstruction::Planes, Upsample::BSpline, "planes"),
+];
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// Times `frames` frames recorded by `record`: GPU timestamps when available, else wall
+/// time of submit + wait.
+type Timestamp<'a> = Option<(&'a wgpu::QuerySet, u32)>;
+
+/// Records one frame's commands, with the timestamp pair to write if any.
+trait Record: FnMut(&mut wgpu::CommandEncoder, Timestamp<'_>) -> Result<(), GpuError> {}
+impl<T: FnMut(&mut wgpu::CommandEncoder, Timestamp<'_>) -> Result<(), GpuError>> Record for T {}
+
+fn encode_frame(
+    ctx: &GpuContext,
+    record: &mut impl Record,
+    ts: Timestamp<'_>,
+) -> Result<wgpu::CommandBuffer, GpuError> {
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    record(&mut encoder, ts)?;
+    Ok(encoder.finish())
+}
+
+fn wait(ctx: &GpuContext) -> Result<(), GpuError> {
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map(|_| ())
+        .map_err(|e| GpuError::DeviceLost(e.to_string()))
+}
+
+/// Times `frames` frames recorded by `record` after two warm-up frames: GPU timestamps when
+/// available, else wall time of submit + wait.
+fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<f64, GpuError> {
+    for _ in 0..2 {
+        ctx.queue.submit([encode_frame(ctx, &mut record, None)?]);
+        wait(ctx)?;
+    }
+    match Timestamps::new(&ctx.device, &ctx.queue, frames) {
+        Some(ts) => {
+            for i in 0..frames {
+                ctx.queue
+                    .submit([encode_frame(ctx, &mut record, ts.pair(i))?]);
+                wait(ctx)?;
+            }
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+            ts.encode_resolve(&mut encoder);
+            ctx.queue.submit([encoder.finish()]);
+            Ok(median(ts.read_ms(&ctx.device)?))
+        }
+        None => {
+            let mut ms = Vec::new();
+            for _ in 0..frames {
+                let t = Instant::now();
+                ctx.queue.submit([encode_frame(ctx, &mut record, None)?]);
+                wait(ctx)?;
+                ms.push(t.elapsed().as_secs_f64() * 1e3);
+            }
+            Ok(median(ms))
+        }
+    }
+}
+
+fn scene(explosions: usize) -> Result<(Level, Terrain<Graph>), String> {
+    let level = Level::default_level();
+    let mut terrain = level.terrain().map_err(|e| e.to_string())?;
+    for chunk in 0..explosions.div_ceil(100) {
+        let n = (explosions - chunk * 100).min(100);
+        barrage::fire(&level, &mut terrain, n, 0x005e_ed2d + chunk as u64);
+    }
+    terrain.set_tick(terrain.tick().saturating_add(120));
+    Ok((level, terrain))
+}
+
+fn gpu_rows(
+    ctx: &GpuContext,
+    terrain: &Terrain<Graph>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    frames: u32,
+) -> Result<Vec<Row>, GpuError> {
+    let target = Offscreen::new(&ctx.device, camera.width, camera.height)?;
+    let format = craterfield::render2d::gpu::readback::READBACK_FORMAT;
+    let mut rows = Vec::new();
+    let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, format, RenderOptions::default())?;
+    r.prepare(terrain, palette, camera)?;
+    let ms = time_frames(ctx, frames.min(4), |enc, ts| {
+        r.render_direct(enc, target.view(), ts)
+    })?;
+    rows.push(Row {
+        pipeline: "full-res",
+        scale: 1,
+        mode: "direct".into(),
+        ms,
+    });
+    for scale in Scale::ALL {
+        for (reconstruction, upsample, name) in MODES {
+            r.set_options(RenderOptions {
+                scale,
+                reconstruction,
+                upsample,
+                ..RenderOptions::default()
+            });
+            r.prepare(terrain, palette, camera)?;
+            let ms = time_frames(ctx, frames, |enc, ts| {
+                r.render_timed(enc, target.view(), ts)
+            })?;
+            rows.push(Row {
+                pipeline: "reduced",
+                scale: scale.divisor(),
+                mode: name.into(),
+                ms,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+fn twin_ms(
+    terrain: &Terrain<Graph>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    frames: u32,
+) -> Result<f64, String> {
+    let options = RenderOptions::default();
+    let mut ms = Vec::new();
+    for i in 0..frames + 2 {
+        let t = Instant::now();
+        render_twin(terrain, palette, camera, &options, 0).map_err(|e| e.to_string())?;
+        if i >= 2 {
+            ms.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    Ok(median(ms))
+}
+
+pub fn run(options: &Options) -> Result<ExitCode, String> {
+    let (level, terrain) = scene(options.explosions)?;
+    let palette: Vec<[u8; 3]> = level.materials().iter().map(|m| m.color).collect();
+    let b = level.bounds();
+    let camera = Camera {
+        center: (b.min + b.max) * 0.5 + Vec2::new(0.0, -150.0),
+        units_per_pixel: 1.0,
+        width: options.width,
+        height: options.height,
+    };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cpu_twin_ms = twin_ms(&terrain, &palette, &camera, options.frames)?;
+    let (adapter, timing, rows) = match GpuContext::new() {
+        Ok(ctx) => {
+            let timing = if ctx.timestamps {
+                "GPU timestamp queries"
+            } else {
+                "wall time, submit + wait per frame"
+            };
+            let rows = gpu_rows(&ctx, &terrain, &palette, &camera, options.frames)
+                .map_err(|e| e.to_string())?;
+            (ctx.describe(), timing, rows)
+        }
+        Err(e) => (format!("none ({e})"), "none", Vec::new()),
+    };
+    let report = Report {
+        adapter,
+        timing,
+        rows,
+        cpu_twin_ms,
+        cpu_twin_threads: threads,
+    };
+    if options.json {
+        println!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        print_table(&report, options);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn print_table(report: &Report, options: &Options) {
+    println!(
+        "bench render2d: default level after {} explosions, {}x{}",
+        options.explosions, options.width, options.height
+    );
+    println!("adapter: {} (timing: {})", report.adapter, report.timing);
+    println!(
+        "{:<10} {:>5} {:<14} {:>10}",
+        "pipeline", "scale", "mode", "ms/frame"
+    );
+    for r in &report.rows {
+        println!(
+            "{:<10} {:>5} {:<14} {:>10.3}",
+            r.pipeline,
+            format!("1/{}", r.scale),
+            r.mode,
+            r.ms
+        );
+    }
+    println!(
+        "CPU twin (1/16, planes, {} threads): {:.2} ms/frame",
+        report.cpu_twin_threads, report.cpu_twin_ms
+    );
+    let full = report
+        .rows
+        .iter()
+        .find(|r| r.pipeline == "full-res")
+        .map(|r| r.ms);
+    let sixteenth = report
+        .rows
+        .iter()
+        .find(|r| r.pipeline == "reduced" && r.scale == 16 && r.mode == "planes")
+        .map(|r| r.ms);
+    if let (Some(full), Some(s16)) = (full, sixteenth) {
+        let speedup = full / s16;
+        let verdict = if speedup >= 5.0 { "met" } else { "NOT met" };
+        println!("1/16 planes vs full-res direct: {speedup:.1}x faster (target >= 5x: {verdict})");
+    }
+    let verdict = if report.cpu_twin_ms < 15.0 {
+        "met"
+    } else {
+        "NOT met"
+    };
+    println!("CPU twin target < 15 ms per 1080p frame: {verdict}");
+}

@@ -1,0 +1,55 @@
+//! A headless device for tools and tests: the first adapter wgpu finds (a GPU, or a software
+//! driver such as Mesa's lavapipe), with default limits lowered to what the adapter offers.
+//! Games pass their own device to the renderer and never need this.
+
+use super::GpuError;
+
+/// A device, its queue and what the adapter says about itself.
+pub struct GpuContext {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// The adapter's name, driver and type.
+    pub info: wgpu::AdapterInfo,
+    /// Whether the device was created with `TIMESTAMP_QUERY`.
+    pub timestamps: bool,
+}
+
+impl GpuContext {
+    /// Requests the default adapter and a device on it, with timestamp queries when offered.
+    pub fn new() -> Result<GpuContext, GpuError> {
+        let instance = wgpu::Instance::default();
+        let adapter =
+            pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
+                .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let required_features = if timestamps {
+            wgpu::Features::TIMESTAMP_QUERY
+        } else {
+            wgpu::Features::empty()
+        };
+        let descriptor = wgpu::DeviceDescriptor {
+            label: Some("craterfield"),
+            required_features,
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ..wgpu::DeviceDescriptor::default()
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
+            .map_err(|e| GpuError::RequestDevice(e.to_string()))?;
+        Ok(GpuContext {
+            device,
+            queue,
+            info: adapter.get_info(),
+            timestamps,
+        })
+    }
+
+    /// `name (backend, device type)`, for messages.
+    pub fn describe(&self) -> String {
+        format!(
+            "{} ({:?}, {:?})",
+            self.info.name, self.info.backend, self.info.device_type
+        )
+    }
+}

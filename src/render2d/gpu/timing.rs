@@ -1,0 +1,86 @@
+//! GPU time of recorded work from timestamp queries (when the device has
+//! `TIMESTAMP_QUERY`), for benchmarks. Reading results waits for the GPU.
+
+use super::GpuError;
+
+/// A set of timestamp pairs and the buffers to resolve and read them.
+pub struct Timestamps {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    pairs: u32,
+    period_ns: f64,
+}
+
+impl Timestamps {
+    /// Room for `pairs` begin/end pairs; `None` when the device lacks timestamp queries.
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, pairs: u32) -> Option<Timestamps> {
+        if !device.features().contains(wgpu::Features::TIMESTAMP_QUERY) || pairs == 0 {
+            return None;
+        }
+        let count = pairs * 2;
+        let set = device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("craterfield timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count,
+        });
+        let bytes = u64::from(count) * 8;
+        let resolve = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("craterfield timestamp resolve"),
+            size: bytes,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let read = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("craterfield timestamp read"),
+            size: bytes,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        Some(Timestamps {
+            set,
+            resolve,
+            read,
+            pairs,
+            period_ns: f64::from(queue.get_timestamp_period()),
+        })
+    }
+
+    /// The query set and the first index of pair `i`.
+    pub fn pair(&self, i: u32) -> Option<(&wgpu::QuerySet, u32)> {
+        (i < self.pairs).then_some((&self.set, i * 2))
+    }
+
+    /// Records the resolve and copy; submit before [`Self::read_ms`].
+    pub fn encode_resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.resolve_query_set(&self.set, 0..self.pairs * 2, &self.resolve, 0);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, self.resolve.size());
+    }
+
+    /// Milliseconds of every pair, after the resolve was submitted.
+    pub fn read_ms(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
+        let slice = self.read.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let ms = {
+            let data = slice
+                .get_mapped_range()
+                .map_err(|e| GpuError::Readback(e.to_string()))?;
+            let ticks: &[u64] = bytemuck::cast_slice(&data);
+            ticks
+                .chunks(2)
+                .map(|p| p[1].wrapping_sub(p[0]) as f64 * self.period_ns / 1.0e6)
+                .collect()
+        };
+        self.read.unmap();
+        Ok(ms)
+    }
+}

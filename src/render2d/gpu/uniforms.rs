@@ -1,0 +1,207 @@
+//! Plain-data structs shared with the WGSL passes, byte for byte. Each one has a twin in
+//! `shaders/` (named in its doc) with the same field order; the size assertions below and the
+//! naga layout test in `tests/gpu_shaders.rs` keep the two sides in step.
+
+use bytemuck::{Pod, Zeroable};
+use glam::Vec2;
+
+use crate::field2d::event::{Event, EventKind};
+use crate::field2d::grid::{CellState, MaterialSource};
+use crate::render2d::camera::Camera;
+use crate::render2d::lattice::Lattice;
+use crate::render2d::options::ShadeOptions;
+
+/// Per-frame values; `Frame` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct FrameUniform {
+    /// Camera centre, world units.
+    pub center: [f32; 2],
+    /// World units per pixel.
+    pub upp: f32,
+    /// Padding.
+    pub pad0: f32,
+    /// Output image size, pixels.
+    pub image: [u32; 2],
+    /// Lattice columns and rows.
+    pub lattice_dims: [u32; 2],
+    /// Lattice `i0`, `j0`.
+    pub lattice_origin: [i32; 2],
+    /// Texel spacing, world units.
+    pub h: f32,
+    /// The terrain's band `M`.
+    pub band: f32,
+    /// Lower-left corner of the explosion grid.
+    pub grid_origin: [f32; 2],
+    /// Grid cell side.
+    pub cell_size: f32,
+    /// Brick lattice spacing.
+    pub brick_spacing: f32,
+    /// Grid columns and rows.
+    pub grid_dims: [u32; 2],
+    /// Brick lattice intervals per cell side.
+    pub brick_res: u32,
+    /// The terrain's current tick.
+    pub tick: u32,
+    /// Sky colour at the top, 0..255.
+    pub sky_top: [f32; 4],
+    /// Sky colour at the bottom, 0..255.
+    pub sky_bottom: [f32; 4],
+    /// Light direction.
+    pub light: [f32; 2],
+    /// Outline width, pixels.
+    pub outline_px: f32,
+    /// Interior shading depth, pixels.
+    pub shade_depth_px: f32,
+    /// Palette entries.
+    pub palette_len: u32,
+    /// 1 when the render target is an sRGB format (the shader pre-linearizes).
+    pub srgb_target: u32,
+    /// Size of the reduced-scale textures (at least the lattice's).
+    pub texture_dims: [u32; 2],
+}
+
+const _: () = assert!(std::mem::size_of::<FrameUniform>() == 144);
+
+impl FrameUniform {
+    /// The camera, lattice and shading part (the grid part is filled by [`GridFrame`]).
+    pub fn new(camera: &Camera, lattice: &Lattice, shade: &ShadeOptions, srgb: bool) -> Self {
+        let rgb = |c: [u8; 3]| [c[0] as f32, c[1] as f32, c[2] as f32, 255.0];
+        FrameUniform {
+            center: camera.center.to_array(),
+            upp: camera.units_per_pixel,
+            image: [camera.width, camera.height],
+            lattice_dims: [lattice.cols, lattice.rows],
+            lattice_origin: [lattice.i0, lattice.j0],
+            h: lattice.h,
+            sky_top: rgb(shade.sky_top),
+            sky_bottom: rgb(shade.sky_bottom),
+            light: shade.light.to_array(),
+            outline_px: shade.outline_px,
+            shade_depth_px: shade.shade_depth_px,
+            srgb_target: u32::from(srgb),
+            ..FrameUniform::default()
+        }
+    }
+
+    /// Fills in the terrain's grid geometry, band and tick.
+    pub fn with_grid(self, g: &GridFrame) -> Self {
+        FrameUniform {
+            band: g.band,
+            grid_origin: g.origin.to_array(),
+            cell_size: g.cell_size,
+            brick_spacing: g.brick_spacing,
+            grid_dims: g.dims,
+            brick_res: g.brick_res,
+            tick: g.tick,
+            ..self
+        }
+    }
+}
+
+/// The grid-geometry part of [`FrameUniform`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GridFrame {
+    /// Band `M`.
+    pub band: f32,
+    /// Grid origin.
+    pub origin: Vec2,
+    /// Cell side.
+    pub cell_size: f32,
+    /// Brick spacing.
+    pub brick_spacing: f32,
+    /// Columns, rows.
+    pub dims: [u32; 2],
+    /// Brick resolution.
+    pub brick_res: u32,
+    /// Current tick.
+    pub tick: u32,
+}
+
+/// Most palette entries the GPU passes hold; materials beyond draw magenta.
+pub const MAX_PALETTE: usize = 256;
+
+/// The material colours; `Palette` in `shaders/shade.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct PaletteUniform {
+    /// RGB 0..255 and 255 alpha per material.
+    pub colors: [[f32; 4]; MAX_PALETTE],
+}
+
+const _: () = assert!(std::mem::size_of::<PaletteUniform>() == 4096);
+
+impl PaletteUniform {
+    /// The first [`MAX_PALETTE`] colours of `palette`.
+    pub fn new(palette: &[[u8; 3]]) -> PaletteUniform {
+        let mut colors = [[0.0; 4]; MAX_PALETTE];
+        for (slot, c) in colors.iter_mut().zip(palette) {
+            *slot = [c[0] as f32, c[1] as f32, c[2] as f32, 255.0];
+        }
+        PaletteUniform { colors }
+    }
+}
+
+/// One event; `GpuEvent` in `shaders/field.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuEvent {
+    /// Centre, world units.
+    pub center: [f32; 2],
+    /// Full radius.
+    pub radius: f32,
+    /// Blend width (0 = sharp).
+    pub rim: f32,
+    /// Start tick.
+    pub tick: u32,
+    /// Growth ticks.
+    pub grow: u32,
+    /// 0 carve, 1 fill.
+    pub kind: u32,
+    /// Fill material.
+    pub material: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<GpuEvent>() == 32);
+
+impl From<&Event> for GpuEvent {
+    fn from(e: &Event) -> Self {
+        GpuEvent {
+            center: e.center_f32().to_array(),
+            radius: e.radius_f32(),
+            rim: e.rim_f32(),
+            tick: e.tick,
+            grow: u32::from(e.grow_ticks),
+            kind: u32::from(e.kind == EventKind::Fill),
+            material: u32::from(e.material),
+        }
+    }
+}
+
+/// One grid cell; `GpuCell` in `shaders/field.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuCell {
+    /// `CELL_*` in `field.wgsl`.
+    pub state: u32,
+    /// Material or brick id, by state.
+    pub payload: u32,
+    /// First list entry in the list buffer.
+    pub start: u32,
+    /// List length.
+    pub len: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<GpuCell>() == 16);
+
+/// `(state, payload)` codes of a cell state (`CELL_*` in `shaders/field.wgsl`).
+pub fn encode_state(state: CellState) -> (u32, u32) {
+    match state {
+        CellState::Base => (0, 0),
+        CellState::Air(MaterialSource::Base) => (1, 0),
+        CellState::Air(MaterialSource::Constant(m)) => (2, u32::from(m)),
+        CellState::Air(MaterialSource::Brick(id)) => (3, id),
+        CellState::Solid(m) => (4, u32::from(m)),
+        CellState::Brick(id) => (5, id),
+    }
+}

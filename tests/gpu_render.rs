@@ -1,0 +1,402 @@
+//! GPU renderer tests on whatever adapter wgpu finds (Mesa's lavapipe in CI): the GPU image
+//! against the CPU twin for every mode and scale, golden images, the pipeline cache, and the
+//! incremental explosion-grid uploads.
+//!
+//! Runs with its own harness so that a machine without an adapter reports every test as
+//! ignored (never as passed); with `CI` set a missing adapter fails instead.
+
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use craterfield::field2d::{Event, Graph, Level, Terrain};
+use craterfield::render2d::gpu::readback::{Pipeline, READBACK_FORMAT, render_to_image};
+use craterfield::render2d::gpu::{GpuContext, GpuError, TerrainRenderer};
+use craterfield::render2d::twin::render_twin;
+use craterfield::render2d::{
+    Camera, ExactRenderOptions, Reconstruction, RenderOptions, Scale, Upsample, render_exact,
+};
+use craterfield::visdiff::{DiffOptions, DiffReport, check_golden, compare};
+use glam::Vec2;
+use image::RgbaImage;
+use libtest_mimic::{Arguments, Failed, Trial};
+
+type TestResult = Result<(), Failed>;
+type GpuTest = fn(&GpuContext) -> TestResult;
+
+fn context() -> Option<Arc<Mutex<GpuContext>>> {
+    static CONTEXT: OnceLock<Option<Arc<Mutex<GpuContext>>>> = OnceLock::new();
+    CONTEXT
+        .get_or_init(|| match GpuContext::new() {
+            Ok(ctx) => {
+                eprintln!("GPU adapter: {}", ctx.describe());
+                Some(Arc::new(Mutex::new(ctx)))
+            }
+            Err(e) => {
+                eprintln!("no GPU adapter: {e}");
+                None
+            }
+        })
+        .clone()
+}
+
+/// A level with a few hundred deterministic explosions and fills, so the grid has lists,
+/// air and brick cells.
+fn cratered(level: &Level, count: usize) -> Terrain<Graph> {
+    let mut terrain = level.terrain().expect("terrain");
+    let b = level.bounds();
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let materials = level.materials().len().max(1) as u16;
+    let mut applied = 0;
+    let mut attempt = 0;
+    while applied < count && attempt < count * 20 {
+        attempt += 1;
+        let x = b.min.x + next() * (b.max.x - b.min.x);
+        let mut y = b.max.y;
+        while y > b.min.y && craterfield::field2d::Sdf::distance(&terrain, Vec2::new(x, y)) > 0.0 {
+            y -= 8.0;
+        }
+        let r = 10.0 + next() * 40.0;
+        let e = if attempt % 7 == 6 {
+            Event::fill(
+                Vec2::new(x, y + r * 0.5),
+                r * 0.5,
+                attempt as u16 % materials,
+            )
+        } else {
+            Event::carve(Vec2::new(x, y), r)
+        };
+        if e.is_ok_and(|e| terrain.apply(e).is_ok()) {
+            applied += 1;
+        }
+    }
+    terrain
+}
+
+fn palette(level: &Level) -> Vec<[u8; 3]> {
+    level.materials().iter().map(|m| m.color).collect()
+}
+
+fn camera(center: Vec2, upp: f32, w: u32, h: u32) -> Camera {
+    Camera {
+        center,
+        units_per_pixel: upp,
+        width: w,
+        height: h,
+    }
+}
+
+fn gpu_image(
+    ctx: &GpuContext,
+    terrain: &Terrain<Graph>,
+    palette: &[[u8; 3]],
+    cam: &Camera,
+    options: &RenderOptions,
+    pipeline: Pipeline,
+) -> Result<RgbaImage, GpuError> {
+    let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())?;
+    r.prepare(terrain, palette, cam)?;
+    render_to_image(&r, cam.width, cam.height, pipeline)
+}
+
+fn out_dir() -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-render");
+    let _ = std::fs::create_dir_all(&dir);
+    dir
+}
+
+/// Fails with the report and writes both images and a heat-map when over tolerance.
+fn expect_close(name: &str, gpu: &RgbaImage, cpu: &RgbaImage, tol: &DiffOptions) -> TestResult {
+    let report: DiffReport = compare(gpu, cpu, tol).map_err(|e| e.to_string())?;
+    if report.passed() {
+        return Ok(());
+    }
+    let dir = out_dir();
+    let _ = gpu.save(dir.join(format!("{name}.gpu.png")));
+    let _ = cpu.save(dir.join(format!("{name}.cpu.png")));
+    Err(format!(
+        "{name}: GPU differs from the CPU twin: {} (images in {})",
+        report.failure_summary(),
+        dir.display()
+    )
+    .into())
+}
+
+fn twin_tolerance() -> DiffOptions {
+    DiffOptions {
+        pixel_tolerance: 12,
+        max_differing_fraction: 0.01,
+        max_mean: 1.0,
+        max_percentile: 12.0,
+        ..DiffOptions::default()
+    }
+}
+
+fn methods() -> Vec<(Reconstruction, Upsample)> {
+    vec![
+        (Reconstruction::Off, Upsample::Bilinear),
+        (Reconstruction::Off, Upsample::BSpline),
+        (Reconstruction::Off, Upsample::CatmullRom),
+        (Reconstruction::Divergence, Upsample::BSpline),
+        (Reconstruction::Planes, Upsample::BSpline),
+    ]
+}
+
+fn gpu_matches_twin_every_mode_and_scale(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 300);
+    let pal = palette(&level);
+    let cams = [
+        camera(Vec2::new(1400.0, 900.0), 1.0, 320, 180),
+        camera(Vec2::new(2700.0, 650.0), 0.75, 256, 144),
+    ];
+    for (ci, cam) in cams.iter().enumerate() {
+        for scale in Scale::ALL {
+            for (reconstruction, upsample) in methods() {
+                let options = RenderOptions {
+                    scale,
+                    reconstruction,
+                    upsample,
+                    ..RenderOptions::default()
+                };
+                let gpu = gpu_image(ctx, &terrain, &pal, cam, &options, Pipeline::Reduced)
+                    .map_err(|e| e.to_string())?;
+                let cpu =
+                    render_twin(&terrain, &pal, cam, &options, 0).map_err(|e| e.to_string())?;
+                let name = format!(
+                    "cam{ci}-s{}-{}-{}",
+                    scale.divisor(),
+                    reconstruction.name(),
+                    upsample.name()
+                );
+                expect_close(&name, &gpu, &cpu, &twin_tolerance())?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn example_levels_match_twin(ctx: &GpuContext) -> TestResult {
+    for name in ["caverns", "skyrealm"] {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("levels/{name}.ron"));
+        let level = Level::load(&path).map_err(|e| e.to_string())?;
+        let terrain = cratered(&level, 100);
+        let pal = palette(&level);
+        let b = level.bounds();
+        let cam = Camera::fit(b.min, b.max, 384);
+        let options = RenderOptions::default();
+        let gpu = gpu_image(ctx, &terrain, &pal, &cam, &options, Pipeline::Reduced)
+            .map_err(|e| e.to_string())?;
+        let cpu = render_twin(&terrain, &pal, &cam, &options, 0).map_err(|e| e.to_string())?;
+        expect_close(name, &gpu, &cpu, &twin_tolerance())?;
+    }
+    Ok(())
+}
+
+fn direct_matches_exact_reference(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 200);
+    let pal = palette(&level);
+    let cam = camera(Vec2::new(1300.0, 800.0), 1.0, 320, 200);
+    let gpu = gpu_image(
+        ctx,
+        &terrain,
+        &pal,
+        &cam,
+        &RenderOptions::default(),
+        Pipeline::Direct,
+    )
+    .map_err(|e| e.to_string())?;
+    let exact = render_exact(&terrain, &pal, &cam, &ExactRenderOptions::default());
+    expect_close("direct-vs-exact", &gpu, &exact, &twin_tolerance())
+}
+
+fn golden_images(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 150);
+    let pal = palette(&level);
+    let cam = camera(Vec2::new(1180.0, 1120.0), 1.0, 256, 160);
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden");
+    let tol = DiffOptions {
+        pixel_tolerance: 8,
+        max_differing_fraction: 0.005,
+        ..DiffOptions::default()
+    };
+    for (name, reconstruction, pipeline) in [
+        ("gpu-planes", Reconstruction::Planes, Pipeline::Reduced),
+        (
+            "gpu-divergence",
+            Reconstruction::Divergence,
+            Pipeline::Reduced,
+        ),
+        ("gpu-direct", Reconstruction::Planes, Pipeline::Direct),
+    ] {
+        let options = RenderOptions {
+            reconstruction,
+            ..RenderOptions::default()
+        };
+        let img =
+            gpu_image(ctx, &terrain, &pal, &cam, &options, pipeline).map_err(|e| e.to_string())?;
+        check_golden(name, &img, &dir, &tol).map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn pipeline_cache_hits_on_same_visible_set(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = level.terrain().map_err(|e| e.to_string())?;
+    let pal = palette(&level);
+    let mut r = TerrainRenderer::new(
+        &ctx.device,
+        &ctx.queue,
+        READBACK_FORMAT,
+        RenderOptions::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    let a = r
+        .prepare(
+            &terrain,
+            &pal,
+            &camera(Vec2::new(600.0, 500.0), 1.0, 256, 144),
+        )
+        .map_err(|e| e.to_string())?;
+    let b = r
+        .prepare(
+            &terrain,
+            &pal,
+            &camera(Vec2::new(604.0, 502.0), 1.0, 256, 144),
+        )
+        .map_err(|e| e.to_string())?;
+    let c = r
+        .prepare(
+            &terrain,
+            &pal,
+            &camera(Vec2::new(3300.0, 1200.0), 1.0, 256, 144),
+        )
+        .map_err(|e| e.to_string())?;
+    if a.pipeline_hit || !b.pipeline_hit || c.pipeline_hit {
+        return Err(format!(
+            "expected miss, hit, miss; got {} {} {}",
+            a.pipeline_hit, b.pipeline_hit, c.pipeline_hit
+        )
+        .into());
+    }
+    if a.pipeline_key != b.pipeline_key || a.pipeline_key == c.pipeline_key || c.culled_nodes == 0 {
+        return Err(format!("keys {a:?} {b:?} {c:?}").into());
+    }
+    if r.cache_counters() != (1, 2) {
+        return Err(format!("counters {:?}", r.cache_counters()).into());
+    }
+    Ok(())
+}
+
+fn uploads_are_incremental(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let mut terrain = cratered(&level, 200);
+    let pal = palette(&level);
+    let cam = camera(Vec2::new(1400.0, 800.0), 1.0, 256, 144);
+    let options = RenderOptions::default();
+    let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())
+        .map_err(|e| e.to_string())?;
+    let first = r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+    let cells = terrain.grid().dims();
+    let total = (cells.0 * cells.1) as usize;
+    if first.upload.cells != total || first.upload.events != terrain.events().len() {
+        return Err(format!("first upload {:?} (cells {total})", first.upload).into());
+    }
+    let idle = r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+    if idle.upload.events != 0 || idle.upload.cells != 0 || idle.upload.bytes != 0 {
+        return Err(format!("an unchanged terrain uploaded {:?}", idle.upload).into());
+    }
+    terrain
+        .apply(Event::carve(Vec2::new(1400.0, 760.0), 40.0).map_err(|e| e.to_string())?)
+        .map_err(|e| e.to_string())?;
+    let one = r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+    if one.upload.events != 1 || one.upload.cells == 0 || one.upload.cells > 16 {
+        return Err(format!("one explosion uploaded {:?}", one.upload).into());
+    }
+    let gpu =
+        render_to_image(&r, cam.width, cam.height, Pipeline::Reduced).map_err(|e| e.to_string())?;
+    let cpu = render_twin(&terrain, &pal, &cam, &options, 0).map_err(|e| e.to_string())?;
+    expect_close("after-incremental-upload", &gpu, &cpu, &twin_tolerance())
+}
+
+fn errors_are_values(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = level.terrain().map_err(|e| e.to_string())?;
+    let pal = palette(&level);
+    let mut r = TerrainRenderer::new(
+        &ctx.device,
+        &ctx.queue,
+        READBACK_FORMAT,
+        RenderOptions::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    match render_to_image(&r, 64, 64, Pipeline::Reduced) {
+        Err(GpuError::NotPrepared) => {}
+        other => return Err(format!("render before prepare gave {:?}", other.map(|_| ())).into()),
+    }
+    for bad in [
+        camera(Vec2::new(f32::NAN, 0.0), 1.0, 64, 64),
+        camera(Vec2::ZERO, 0.0, 64, 64),
+        camera(Vec2::ZERO, 1.0, 0, 64),
+    ] {
+        match r.prepare(&terrain, &pal, &bad) {
+            Err(GpuError::Lattice(_)) => {}
+            other => return Err(format!("bad camera {bad:?} gave {:?}", other.map(|_| ())).into()),
+        }
+    }
+    match TerrainRenderer::new(
+        &ctx.device,
+        &ctx.queue,
+        wgpu::TextureFormat::Depth32Float,
+        RenderOptions::default(),
+    ) {
+        Err(GpuError::TargetFormat(_)) => Ok(()),
+        other => Err(format!("a depth target gave {:?}", other.map(|_| ())).into()),
+    }
+}
+
+fn main() {
+    let args = Arguments::from_args();
+    let tests: [(&str, GpuTest); 7] = [
+        (
+            "gpu_matches_twin_every_mode_and_scale",
+            gpu_matches_twin_every_mode_and_scale,
+        ),
+        ("example_levels_match_twin", example_levels_match_twin),
+        (
+            "direct_matches_exact_reference",
+            direct_matches_exact_reference,
+        ),
+        ("golden_images", golden_images),
+        (
+            "pipeline_cache_hits_on_same_visible_set",
+            pipeline_cache_hits_on_same_visible_set,
+        ),
+        ("uploads_are_incremental", uploads_are_incremental),
+        ("errors_are_values", errors_are_values),
+    ];
+    let ci = std::env::var_os("CI").is_some();
+    let available = context().is_some();
+    let trials = tests
+        .into_iter()
+        .map(|(name, f)| {
+            Trial::test(name, move || match context() {
+                Some(ctx) => {
+                    let ctx = ctx.lock().map_err(|_| "GPU context poisoned")?;
+                    f(&ctx)
+                }
+                None if ci => Err("no GPU adapter, and CI is set: GPU tests must run in CI".into()),
+                None => Err("no GPU adapter".into()),
+            })
+            .with_ignored_flag(!available && !ci)
+        })
+        .collect();
+    libtest_mimic::run(&args, trials).exit();
+}
