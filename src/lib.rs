@@ -16,5 +16,5 @@ pub mod visdiff;
 
 /// The README's code examples, compiled and run as doctests.
 #[doc = include_str!("../README.md")]
-#[cfg(doctest)]
+#[cfg(all(doctest, feature = "gpu"))]
 pub struct ReadmeDoctests;

@@ -3,6 +3,7 @@
 //! per reconstruction mode, the fast pass 3 against the per-pixel one, independence from
 //! the thread count, and bad input. PNGs of the scenes go to `target/twin-test/`.
 
+#![cfg(feature = "raster")]
 use craterfield::field2d::{Event, Graph, Level, Sdf, Terrain};
 use craterfield::render2d::twin::{
     FieldImage, Shader, TwinError, field_image, field_image_lowres, reconstruct, render_lowres,

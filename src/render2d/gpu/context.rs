@@ -18,8 +18,10 @@ pub struct GpuContext {
 
 impl GpuContext {
     /// Requests the default adapter and a device on it, with timestamp queries when offered.
+    /// wgpu's environment variables choose the backends (`WGPU_BACKEND=vulkan,gl`, ...).
     pub fn new() -> Result<GpuContext, GpuError> {
-        let instance = wgpu::Instance::default();
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter =
             pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
                 .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
