@@ -4,7 +4,8 @@
 struct Frame {
     center: vec2<f32>,
     upp: f32,
-    pad0: f32,
+    // Bound on the field's change per world unit (the planes' Lipschitz clamp).
+    slope: f32,
     image: vec2<u32>,
     lattice_dims: vec2<u32>,
     lattice_origin: vec2<i32>,

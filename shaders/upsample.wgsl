@@ -162,5 +162,23 @@ fn fs_planes(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         }
         d += w[k] * r;
     }
-    return finish(l, d, floor(pos.y));
+    return finish(l, lipschitz_clamp(d, l.p, l.c), floor(pos.y));
+}
+
+// The field changes by at most `frame.slope` per world unit, so at p it lies within
+// d_k +- slope |p - C_k| of every quad texel: clamp the reconstruction into that interval.
+fn lipschitz_clamp(d: f32, p: vec2<f32>, c: vec2<i32>) -> f32 {
+    var lo = -3.0e38;
+    var hi = 3.0e38;
+    for (var k = 0; k < 4; k++) {
+        let t = c + vec2<i32>(k & 1, k >> 1u);
+        let reach = frame.slope * length(p - texel_center(t.x, t.y));
+        let dk = load(t).x;
+        lo = max(lo, dk - reach);
+        hi = min(hi, dk + reach);
+    }
+    if lo > hi {
+        return 0.5 * (lo + hi);
+    }
+    return min(max(d, lo), hi);
 }

@@ -106,6 +106,7 @@ fn uniform_structs_match_their_rust_twins() {
     let expect = [
         ("center", std::mem::offset_of!(FrameUniform, center)),
         ("upp", std::mem::offset_of!(FrameUniform, upp)),
+        ("slope", std::mem::offset_of!(FrameUniform, slope)),
         ("image", std::mem::offset_of!(FrameUniform, image)),
         (
             "lattice_dims",

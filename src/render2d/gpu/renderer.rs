@@ -4,10 +4,12 @@ use crate::emit::ShaderCache;
 use crate::emit::terrain2d::TerrainEmitter;
 use crate::field2d::aabb::Aabb;
 use crate::field2d::graph::Graph;
+use crate::field2d::sdf::Sdf;
 use crate::field2d::terrain::Terrain;
 use crate::render2d::camera::Camera;
 use crate::render2d::lattice::Lattice;
 use crate::render2d::options::{Reconstruction, RenderOptions, Upsample};
+use crate::render2d::twin::slope_bound;
 use glam::Vec2;
 
 use super::GpuError;
@@ -372,6 +374,7 @@ impl TerrainRenderer {
         let dims = self.lowres.as_ref().map_or((1, 1), |t| t.dims);
         let uniform = FrameUniform {
             palette_len: palette.len().min(MAX_PALETTE) as u32,
+            slope: slope_bound(terrain.lipschitz()),
             texture_dims: [dims.0, dims.1],
             ..FrameUniform::new(
                 camera,

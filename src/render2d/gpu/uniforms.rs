@@ -19,8 +19,8 @@ pub struct FrameUniform {
     pub center: [f32; 2],
     /// World units per pixel.
     pub upp: f32,
-    /// Padding.
-    pub pad0: f32,
+    /// Bound on the field's change per world unit (`twin::slope_bound`).
+    pub slope: f32,
     /// Output image size, pixels.
     pub image: [u32; 2],
     /// Lattice columns and rows.

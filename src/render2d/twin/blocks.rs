@@ -13,7 +13,9 @@ use std::ops::Range;
 use glam::Vec2;
 
 use super::Texel;
-use super::upsample::{AxisPos, Textures, axis_pos, bilinear_weights, cubic_weights, plane};
+use super::upsample::{
+    AxisPos, Textures, axis_pos, bilinear_weights, cubic_weights, lipschitz_clamp, plane,
+};
 use crate::render2d::camera::Camera;
 use crate::render2d::options::{Reconstruction, Upsample};
 
@@ -176,6 +178,8 @@ pub(super) struct Kernel {
     pub block: Block,
     pub quad: [Texel; 4],
     interpolant: Interpolant,
+    /// The field's slope bound, for the planes' Lipschitz clamp.
+    slope: f32,
 }
 
 /// A thread's block buffers, reused from block to block.
@@ -211,6 +215,7 @@ impl Kernel {
             block,
             quad,
             interpolant,
+            slope: tex.slope,
         }
     }
 
@@ -295,6 +300,10 @@ impl Kernel {
                     let wx = if k & 1 == 0 { comp } else { frac };
                     accumulate(dist, r, wx, wy[k], k == 0);
                 }
+                let xs = &layout.columns.world[self.block.xs.clone()];
+                for (d, &px) in dist.iter_mut().zip(xs) {
+                    *d = lipschitz_clamp(*d, &self.quad, centers, px, py, self.slope);
+                }
             }
             Interpolant::Bilinear => {
                 let d = self.quad.map(|t| t.d);
@@ -362,7 +371,7 @@ impl Kernel {
                         (lo, hi) = (lo.min(v), hi.max(v));
                     }
                 }
-                (lo, hi)
+                self.widen_for_clamp(lo, hi)
             }
             Interpolant::Bilinear => {
                 // Linear along the row: its values at f = 0 and f = 1 bound it.
@@ -398,6 +407,7 @@ impl Kernel {
         let corners_y = [layout.rows.world[ys.start], layout.rows.world[ys.end - 1]];
         let (mut lo, mut hi, mut magnitude) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32);
         for (t, c) in self.quad.iter().zip(centers) {
+            magnitude = magnitude.max(t.d.abs());
             for px in corners_x {
                 for py in corners_y {
                     let v = plane(t, *c, px, py);
@@ -409,7 +419,21 @@ impl Kernel {
                 }
             }
         }
+        let (lo, hi) = self.widen_for_clamp(lo, hi);
         (lo, hi, magnitude)
+    }
+
+    /// The Lipschitz clamp moves a value `v` into `[lb, ub]` with `lb <= max_k d_k` and
+    /// `ub >= min_k d_k` (a crossed interval gives its midpoint, between the two), so the
+    /// clamped value stays within `[min(lo, min_k d_k), max(hi, max_k d_k)]`.
+    fn widen_for_clamp(&self, lo: f32, hi: f32) -> (f32, f32) {
+        let ds = self.quad.map(|t| t.d);
+        let (dmin, dmax) = ds
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &d| {
+                (a.min(d), b.max(d))
+            });
+        (lo.min(dmin), hi.max(dmax))
     }
 }
 

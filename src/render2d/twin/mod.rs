@@ -64,6 +64,23 @@ pub struct LowRes {
     /// Pair values of the `planes` reconstruction, one `[right, down, diag, anti]` per
     /// texel; `None` in the other modes.
     pub pairs: Option<Vec<[f32; 4]>>,
+    /// How fast the field may change per world unit (see [`slope_bound`]): the `planes`
+    /// interpolant is clamped to `d_k +- slope |p - C_k|` of every quad texel.
+    pub slope: f32,
+}
+
+/// Largest slope bound used: beyond it the bounds say nothing anyway, and it keeps
+/// `slope * 0` finite.
+pub const MAX_SLOPE: f32 = 1.0e6;
+
+/// The slope bound used for a field with Lipschitz bound `lipschitz` (at least 1, capped
+/// at [`MAX_SLOPE`]; NaN gives the cap). Inside baked brick cells the field is a bilinear
+/// interpolant, whose gradient may exceed the bound by up to `sqrt(2)`; the clamp accepts
+/// that there (a guaranteed bound would be `sqrt(2)` times looser and leave most phantom
+/// fragments of the planes' `max` in place, as `bench fidelity` showed).
+pub fn slope_bound(lipschitz: f32) -> f32 {
+    let s = lipschitz.max(1.0);
+    if s < MAX_SLOPE { s } else { MAX_SLOPE }
 }
 
 /// Per-pixel result of pass 3 before shading (row-major, row 0 = top).

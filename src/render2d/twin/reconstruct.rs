@@ -175,6 +175,7 @@ mod tests {
                 texel(1.0, 1.0, 0.0),
             ],
             pairs: None,
+            slope: 1.5,
         };
         reconstruct(&mut low, Reconstruction::Planes).unwrap();
         let pairs = low.pairs.unwrap();
@@ -203,6 +204,7 @@ mod tests {
             lattice: lattice(3, 2),
             texels: texels[..5].to_vec(),
             pairs: None,
+            slope: 1.5,
         };
         assert!(matches!(
             reconstruct(&mut low, Reconstruction::Divergence),

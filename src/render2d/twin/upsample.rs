@@ -49,6 +49,8 @@ pub(super) struct Textures<'a> {
     pub pairs: &'a [[f32; 4]],
     pub mode: Reconstruction,
     pub filter: Upsample,
+    /// The field's slope bound (see [`super::slope_bound`]).
+    pub slope: f32,
 }
 
 impl<'a> Textures<'a> {
@@ -73,6 +75,7 @@ impl<'a> Textures<'a> {
             pairs,
             mode: options.reconstruction,
             filter: options.upsample,
+            slope: lowres.slope,
         })
     }
 
@@ -174,6 +177,32 @@ pub(super) fn plane(t: &Texel, center: Vec2, px: f32, py: f32) -> f32 {
     t.d + (t.g.x * (px - center.x) + t.g.y * (py - center.y))
 }
 
+/// The field is `slope`-Lipschitz, so at `(px, py)` it lies within `d_k +- slope |p - C_k|`
+/// of every quad texel: the planes' interpolant is clamped into that interval. Where a texel
+/// certifies empty (or solid) space around it no plane can draw a phantom there.
+pub(super) fn lipschitz_clamp(
+    d: f32,
+    quad: &[Texel; 4],
+    centers: &[Vec2; 4],
+    px: f32,
+    py: f32,
+    slope: f32,
+) -> f32 {
+    let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
+    for (t, c) in quad.iter().zip(centers) {
+        let (dx, dy) = (px - c.x, py - c.y);
+        let reach = slope * (dx * dx + dy * dy).sqrt();
+        lo = lo.max(t.d - reach);
+        hi = hi.min(t.d + reach);
+    }
+    let crossed = lo > hi;
+    if crossed {
+        // Only f16 rounding of the texels can cross the bounds.
+        return 0.5 * (lo + hi);
+    }
+    d.max(lo).min(hi)
+}
+
 /// The interpolated gradient, normalized (zero stays zero).
 pub(super) fn normal(quad: &[Texel; 4], w: [f32; 4]) -> Vec2 {
     let g = Vec2::new(
@@ -211,7 +240,8 @@ pub(super) fn pixel(tex: &Textures, p: Vec2, q: Vec2) -> PixelField {
             let centers = tex.quad_centers(x.cell, y.cell);
             let planes = [0, 1, 2, 3].map(|k| plane(&quad[k], centers[k], p.x, p.y));
             let blends = tex.blends(x.cell, y.cell);
-            weighted4(w, [0, 1, 2, 3].map(|k| combined_plane(&planes, &blends, k)))
+            let d = weighted4(w, [0, 1, 2, 3].map(|k| combined_plane(&planes, &blends, k)));
+            lipschitz_clamp(d, &quad, &centers, p.x, p.y, tex.slope)
         }
         (_, Upsample::Bilinear) => weighted4(w, quad.map(|t| t.d)),
         (_, filter) => {
