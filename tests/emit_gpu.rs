@@ -276,9 +276,12 @@ fn the_prospero_expression_runs_on_the_gpu(gpu: &Gpu) {
 
 /// Runs every test on the adapter wgpu finds. Without one each test reports itself
 /// ignored (never passed); with `CI` set a missing adapter fails instead.
+/// A test body run on the GPU.
+type GpuTest = fn(&Gpu);
+
 fn main() {
     let args = libtest_mimic::Arguments::from_args();
-    let tests: [(&str, fn(&Gpu)); 4] = [
+    let tests: [(&str, GpuTest); 4] = [
         (
             "emitted_levels_match_the_cpu_on_the_gpu",
             emitted_levels_match_the_cpu_on_the_gpu,
