@@ -165,14 +165,21 @@ fn fs_planes(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     return finish(l, lipschitz_clamp(d, l.p, l.c), floor(pos.y));
 }
 
-// The field changes by at most `frame.slope` per world unit, so at p it lies within
+// The field changes by at most `slope` per world unit around the quad, so at p it lies within
 // d_k +- slope |p - C_k| of every quad texel: clamp the reconstruction into that interval.
+// The slope is the quad's largest gradient magnitude (the field's local rate of change, 1 for
+// a distance field) with a 5% margin, at least 1 and at most the global bound.
 fn lipschitz_clamp(d: f32, p: vec2<f32>, c: vec2<i32>) -> f32 {
+    var local = 1.0;
+    for (var k = 0; k < 4; k++) {
+        local = max(local, length(load(c + vec2<i32>(k & 1, k >> 1u)).yz));
+    }
+    let slope = min(local * 1.05, frame.slope);
     var lo = -3.0e38;
     var hi = 3.0e38;
     for (var k = 0; k < 4; k++) {
         let t = c + vec2<i32>(k & 1, k >> 1u);
-        let reach = frame.slope * length(p - texel_center(t.x, t.y));
+        let reach = slope * length(p - texel_center(t.x, t.y));
         let dk = load(t).x;
         lo = max(lo, dk - reach);
         hi = min(hi, dk + reach);

@@ -15,6 +15,7 @@ use glam::Vec2;
 use super::Texel;
 use super::upsample::{
     AxisPos, Textures, axis_pos, bilinear_weights, cubic_weights, lipschitz_clamp, plane,
+    quad_slope,
 };
 use crate::render2d::camera::Camera;
 use crate::render2d::options::{Reconstruction, Upsample};
@@ -215,7 +216,7 @@ impl Kernel {
             block,
             quad,
             interpolant,
-            slope: tex.slope,
+            slope: quad_slope(&quad, tex.slope),
         }
     }
 

@@ -177,9 +177,22 @@ pub(super) fn plane(t: &Texel, center: Vec2, px: f32, py: f32) -> f32 {
     t.d + (t.g.x * (px - center.x) + t.g.y * (py - center.y))
 }
 
-/// The field is `slope`-Lipschitz, so at `(px, py)` it lies within `d_k +- slope |p - C_k|`
-/// of every quad texel: the planes' interpolant is clamped into that interval. Where a texel
-/// certifies empty (or solid) space around it no plane can draw a phantom there.
+/// The slope used around a quad: the largest gradient magnitude among its texels (the
+/// field's local rate of change; 1 for a distance field) with a 5% margin, at least 1 and at
+/// most the field's global bound `slope`.
+pub(super) fn quad_slope(quad: &[Texel; 4], slope: f32) -> f32 {
+    let local = quad
+        .iter()
+        .map(|t| (t.g.x * t.g.x + t.g.y * t.g.y).sqrt())
+        .fold(1.0f32, f32::max)
+        * 1.05;
+    local.min(slope)
+}
+
+/// The field changes by at most `slope` per world unit around the quad, so at `(px, py)` it
+/// lies within `d_k +- slope |p - C_k|` of every quad texel: the planes' interpolant is
+/// clamped into that interval. Where a texel certifies empty (or solid) space around it, no
+/// plane can draw a phantom there.
 pub(super) fn lipschitz_clamp(
     d: f32,
     quad: &[Texel; 4],
@@ -241,7 +254,7 @@ pub(super) fn pixel(tex: &Textures, p: Vec2, q: Vec2) -> PixelField {
             let planes = [0, 1, 2, 3].map(|k| plane(&quad[k], centers[k], p.x, p.y));
             let blends = tex.blends(x.cell, y.cell);
             let d = weighted4(w, [0, 1, 2, 3].map(|k| combined_plane(&planes, &blends, k)));
-            lipschitz_clamp(d, &quad, &centers, p.x, p.y, tex.slope)
+            lipschitz_clamp(d, &quad, &centers, p.x, p.y, quad_slope(&quad, tex.slope))
         }
         (_, Upsample::Bilinear) => weighted4(w, quad.map(|t| t.d)),
         (_, filter) => {
