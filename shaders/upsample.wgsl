@@ -33,14 +33,18 @@ fn lookup(pos: vec4<f32>) -> Lookup {
 
 // Bilinear normal over the quad, normalized; material of the nearest texel.
 fn finish(l: Lookup, d: f32, y: f32) -> vec4<f32> {
+    let nearest = load(vec2<i32>(floor(l.q + vec2<f32>(0.5))));
+    return finish_with(l, d, y, nearest.w);
+}
+
+fn finish_with(l: Lookup, d: f32, y: f32, material: f32) -> vec4<f32> {
     let t00 = load(l.c);
     let t10 = load(l.c + vec2<i32>(1, 0));
     let t01 = load(l.c + vec2<i32>(0, 1));
     let t11 = load(l.c + vec2<i32>(1, 1));
     let g = mix(mix(t00.yz, t10.yz, l.f.x), mix(t01.yz, t11.yz, l.f.x), l.f.y);
     let n = select(vec2<f32>(0.0), normalize(g), dot(g, g) > 0.0);
-    let nearest = load(vec2<i32>(floor(l.q + vec2<f32>(0.5))));
-    return shade_pixel(d / frame.upp, n, base_color(nearest.w), y);
+    return shade_pixel(d / frame.upp, n, base_color(material), y);
 }
 
 fn uv_of(t: vec2<f32>) -> vec2<f32> {
@@ -124,10 +128,17 @@ fn fs_planes(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let l = lookup(pos);
     var offs = array<vec2<i32>, 4>(vec2<i32>(0, 0), vec2<i32>(1, 0), vec2<i32>(0, 1), vec2<i32>(1, 1));
     var planes: array<f32, 4>;
+    // The material of the texel whose plane is lowest here (the union's rule, extrapolated).
+    var material = 0.0;
+    var lowest = 3.0e38;
     for (var k = 0; k < 4; k++) {
         let c = l.c + offs[k];
         let t = load(c);
         planes[k] = t.x + dot(t.yz, l.p - texel_center(c.x, c.y));
+        if planes[k] < lowest {
+            lowest = planes[k];
+            material = t.w;
+        }
     }
     let s0 = textureLoad(pairs, l.c, 0);
     let s1 = textureLoad(pairs, l.c + vec2<i32>(1, 0), 0);
@@ -162,7 +173,7 @@ fn fs_planes(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         }
         d += w[k] * r;
     }
-    return finish(l, lipschitz_clamp(d, l.p, l.c), floor(pos.y));
+    return finish_with(l, lipschitz_clamp(d, l.p, l.c), floor(pos.y), material);
 }
 
 // The field changes by at most `slope` per world unit around the quad, so at p it lies within

@@ -14,8 +14,8 @@ use glam::Vec2;
 
 use super::Texel;
 use super::upsample::{
-    AxisPos, Textures, axis_pos, bilinear_weights, cubic_weights, lipschitz_clamp, plane,
-    quad_slope,
+    AxisPos, Textures, axis_pos, bilinear_weights, cubic_weights, lipschitz_clamp, lowest_plane,
+    plane, quad_slope,
 };
 use crate::render2d::camera::Camera;
 use crate::render2d::options::{Reconstruction, Upsample};
@@ -327,6 +327,10 @@ impl Kernel {
     /// Material of the texel nearest to pixel `(x, y)` of the block: one of the quad's,
     /// since `floor(q + 0.5)` is `c` or `c + 1` along each axis.
     pub fn material(&self, layout: &Layout, x: usize, y: usize) -> u16 {
+        if let Interpolant::Planes { centers } = &self.interpolant {
+            let (px, py) = (layout.columns.world[x], layout.rows.world[y]);
+            return self.quad[lowest_plane(&self.quad, centers, px, py)].material;
+        }
         let right = layout.columns.pos[x].nearest > self.block.c;
         let below = layout.rows.pos[y].nearest > self.block.r;
         self.quad[usize::from(right) + 2 * usize::from(below)].material

@@ -216,6 +216,21 @@ pub(super) fn lipschitz_clamp(
     d.max(lo).min(hi)
 }
 
+/// Which quad texel's plane is lowest at `(px, py)` (the first on ties): in mode `planes`
+/// the pixel takes that texel's material, the union's rule (the most-inside part wins)
+/// extrapolated along the planes, instead of the nearest texel's blocky choice.
+pub(super) fn lowest_plane(quad: &[Texel; 4], centers: &[Vec2; 4], px: f32, py: f32) -> usize {
+    let mut best = 0;
+    let mut lowest = plane(&quad[0], centers[0], px, py);
+    for k in 1..4 {
+        let v = plane(&quad[k], centers[k], px, py);
+        if v < lowest {
+            (best, lowest) = (k, v);
+        }
+    }
+    best
+}
+
 /// The interpolated gradient, normalized (zero stays zero).
 pub(super) fn normal(quad: &[Texel; 4], w: [f32; 4]) -> Vec2 {
     let g = Vec2::new(
@@ -265,12 +280,20 @@ pub(super) fn pixel(tex: &Textures, p: Vec2, q: Vec2) -> PixelField {
             weighted4(wy, rows)
         }
     };
+    let material = match tex.mode {
+        Reconstruction::Planes => {
+            let centers = tex.quad_centers(x.cell, y.cell);
+            quad[lowest_plane(&quad, &centers, p.x, p.y)].material
+        }
+        _ => {
+            tex.texel(i64::from(x.nearest), i64::from(y.nearest))
+                .material
+        }
+    };
     PixelField {
         d,
         normal: normal(&quad, w),
-        material: tex
-            .texel(i64::from(x.nearest), i64::from(y.nearest))
-            .material,
+        material,
     }
 }
 
