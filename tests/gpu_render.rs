@@ -362,9 +362,143 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
     }
 }
 
+/// Renders the prepared frame into a fresh texture of `format` by recording the pre-passes
+/// and drawing pass 3 into a render pass of the test's own, and reads the bytes back.
+fn draw_in_own_pass(
+    ctx: &GpuContext,
+    r: &TerrainRenderer,
+    cam: &Camera,
+    format: wgpu::TextureFormat,
+) -> Result<Vec<u8>, Failed> {
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("test target"),
+        size: wgpu::Extent3d {
+            width: cam.width,
+            height: cam.height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    let row = (cam.width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("test readback"),
+        size: u64::from(row) * u64::from(cam.height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    r.encode_prepasses(&mut encoder)
+        .map_err(|e| e.to_string())?;
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("the game's pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::RED),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            ..Default::default()
+        });
+        r.draw(&mut pass).map_err(|e| e.to_string())?;
+    }
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(cam.height),
+            },
+        },
+        texture.size(),
+    );
+    ctx.queue.submit([encoder.finish()]);
+    let slice = buffer.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |_| {});
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| e.to_string())?;
+    let data = slice.get_mapped_range().map_err(|e| e.to_string())?;
+    let mut pixels = Vec::new();
+    for line in data.chunks(row as usize) {
+        pixels.extend_from_slice(&line[..cam.width as usize * 4]);
+    }
+    Ok(pixels)
+}
+
+fn draws_into_the_callers_render_pass_and_srgb_targets(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 100);
+    let pal = palette(&level);
+    let cam = camera(Vec2::new(1250.0, 700.0), 1.0, 200, 120);
+    let options = RenderOptions::default();
+    let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())
+        .map_err(|e| e.to_string())?;
+    r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+    let own = draw_in_own_pass(ctx, &r, &cam, READBACK_FORMAT)?;
+    let reference =
+        render_to_image(&r, cam.width, cam.height, Pipeline::Reduced).map_err(|e| e.to_string())?;
+    if own != reference.as_raw().as_slice() {
+        return Err("drawing into the caller's pass differs from render()".into());
+    }
+    // An sRGB target stores the same bytes: the shader hands it linear values.
+    let srgb = wgpu::TextureFormat::Rgba8UnormSrgb;
+    let mut s =
+        TerrainRenderer::new(&ctx.device, &ctx.queue, srgb, options).map_err(|e| e.to_string())?;
+    s.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+    let bytes = draw_in_own_pass(ctx, &s, &cam, srgb)?;
+    let worst = bytes
+        .iter()
+        .zip(&own)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap_or(0);
+    if worst > 1 {
+        return Err(format!("an sRGB target differs from the linear one by {worst} levels").into());
+    }
+    Ok(())
+}
+
+fn resizing_reallocates_and_matches_a_fresh_renderer(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 100);
+    let pal = palette(&level);
+    let options = RenderOptions::default();
+    let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())
+        .map_err(|e| e.to_string())?;
+    let small = camera(Vec2::new(1250.0, 700.0), 1.0, 96, 64);
+    let large = camera(Vec2::new(1250.0, 700.0), 1.0, 420, 260);
+    for cam in [small, large, small] {
+        r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+        let img = render_to_image(&r, cam.width, cam.height, Pipeline::Reduced)
+            .map_err(|e| e.to_string())?;
+        let fresh = gpu_image(ctx, &terrain, &pal, &cam, &options, Pipeline::Reduced)
+            .map_err(|e| e.to_string())?;
+        if img != fresh {
+            return Err(format!(
+                "after a resize to {}x{} the frame differs",
+                cam.width, cam.height
+            )
+            .into());
+        }
+    }
+    Ok(())
+}
+
 fn main() {
     let args = Arguments::from_args();
-    let tests: [(&str, GpuTest); 7] = [
+    let tests: [(&str, GpuTest); 9] = [
         (
             "gpu_matches_twin_every_mode_and_scale",
             gpu_matches_twin_every_mode_and_scale,
@@ -381,6 +515,14 @@ fn main() {
         ),
         ("uploads_are_incremental", uploads_are_incremental),
         ("errors_are_values", errors_are_values),
+        (
+            "draws_into_the_callers_render_pass_and_srgb_targets",
+            draws_into_the_callers_render_pass_and_srgb_targets,
+        ),
+        (
+            "resizing_reallocates_and_matches_a_fresh_renderer",
+            resizing_reallocates_and_matches_a_fresh_renderer,
+        ),
     ];
     let ci = std::env::var_os("CI").is_some();
     let available = context().is_some();
