@@ -62,17 +62,10 @@ fn dsmin(a: vec3<f32>, b: vec3<f32>, k: f32) -> vec3<f32> {
     return m;
 }
 
+// The smooth maximum is the smooth minimum of the negated operands, negated (the same
+// selects, the same blend term).
 fn dsmax(a: vec3<f32>, b: vec3<f32>, k: f32) -> vec3<f32> {
-    let m = dmax(a, b);
-    let diff = a - b;
-    let ad = select(diff, -diff, diff.x < 0.0);
-    let hk = dmax(vec3<f32>(k, 0.0, 0.0) - ad, vec3<f32>(0.0));
-    let h = hk / k;
-    if h.x > 0.0 {
-        let hh = vec3<f32>(h.x * h.x, 2.0 * h.x * h.yz);
-        return m + hh * k * 0.25;
-    }
-    return m;
+    return -dsmin(-a, -b, k);
 }
 
 // The base field clamped to the band, with its material.

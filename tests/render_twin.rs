@@ -130,7 +130,7 @@ fn full_scale_bilinear_shades_like_the_exact_reference() {
     let pal = palette(&level);
     let exact_options = ExactRenderOptions::default();
     let twin_options = RenderOptions {
-        shade: exact_options.shade_options(),
+        shade: exact_options.shade.clone(),
         ..options(Scale::Full, Reconstruction::Off, Upsample::Bilinear)
     };
     for (name, cam) in [

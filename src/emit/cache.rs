@@ -64,16 +64,7 @@ impl<V> ShaderCache<V> {
             self.touch(key, now);
         } else {
             self.misses += 1;
-            let value = make()?;
-            self.evict_to(self.capacity - 1);
-            self.entries.insert(
-                key,
-                Entry {
-                    value,
-                    last_used: now,
-                },
-            );
-            self.by_age.insert(now, key);
+            self.insert(key, make()?);
         }
         let entry = &self.entries[&key];
         Ok((&entry.value, hit))

@@ -13,47 +13,13 @@ use super::options::ShadeOptions;
 use super::twin::Shader;
 use crate::field2d::Sdf;
 
-/// Shading parameters.
-#[derive(Clone, Debug, PartialEq)]
+/// Options of the exact renderer.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct ExactRenderOptions {
-    /// Sky colour at the top and bottom of the image.
-    pub sky_top: [u8; 3],
-    /// Sky colour at the bottom.
-    pub sky_bottom: [u8; 3],
-    /// Width of the dark outline inside the surface, pixels.
-    pub outline_px: f32,
-    /// Depth over which the interior darkens, pixels.
-    pub shade_depth_px: f32,
-    /// Direction the light comes from (world space, normalized internally).
-    pub light: Vec2,
+    /// Colours and shading, the same as the reduced-scale pipeline's.
+    pub shade: ShadeOptions,
     /// Worker threads (0 = all cores).
     pub threads: usize,
-}
-
-impl Default for ExactRenderOptions {
-    fn default() -> Self {
-        ExactRenderOptions {
-            sky_top: [40, 64, 112],
-            sky_bottom: [150, 180, 214],
-            outline_px: 1.5,
-            shade_depth_px: 28.0,
-            light: Vec2::new(-0.35, 0.94),
-            threads: 0,
-        }
-    }
-}
-
-impl ExactRenderOptions {
-    /// The shading part of the options (the pipeline's [`ShadeOptions`]).
-    pub fn shade_options(&self) -> ShadeOptions {
-        ShadeOptions {
-            sky_top: self.sky_top,
-            sky_bottom: self.sky_bottom,
-            outline_px: self.outline_px,
-            shade_depth_px: self.shade_depth_px,
-            light: self.light,
-        }
-    }
 }
 
 const TILE: u32 = 8;
@@ -90,7 +56,7 @@ pub fn render_exact<F: Sdf + Sync>(
         field,
         palette,
         camera,
-        shader: Shader::new(&opts.shade_options(), camera.height),
+        shader: Shader::new(&opts.shade, camera.height),
     };
     std::thread::scope(|s| {
         for group in groups {

@@ -99,30 +99,44 @@ impl Offscreen {
 
     /// Maps the buffer (after the copy was submitted) and returns the pixels.
     pub fn read(&self, device: &wgpu::Device) -> Result<RgbaImage, GpuError> {
-        let slice = self.buffer.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        let mut pixels = Vec::with_capacity(self.width as usize * self.height as usize * 4);
-        {
-            let data = slice
-                .get_mapped_range()
-                .map_err(|e| GpuError::Readback(e.to_string()))?;
-            for row in data.chunks(self.padded_row as usize) {
-                pixels.extend_from_slice(&row[..self.width as usize * 4]);
-            }
-        }
-        self.buffer.unmap();
+        let (width, row) = (self.width as usize * 4, self.padded_row as usize);
+        let pixels = map_read(device, &self.buffer, |data| {
+            data.chunks(row)
+                .flat_map(|line| &line[..width])
+                .copied()
+                .collect::<Vec<u8>>()
+        })?;
         RgbaImage::from_raw(self.width, self.height, pixels)
             .ok_or_else(|| GpuError::Readback("pixel count does not match the size".into()))
     }
+}
+
+/// Maps `buffer` for reading (after the commands filling it were submitted), waits for the
+/// device, hands the bytes to `read` and unmaps.
+pub(crate) fn map_read<T>(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    read: impl FnOnce(&[u8]) -> T,
+) -> Result<T, GpuError> {
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| GpuError::Readback(e.to_string()))?
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let out = {
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        read(&data)
+    };
+    buffer.unmap();
+    Ok(out)
 }
 
 /// Renders the prepared frame of `renderer` (whose target format must be

@@ -225,10 +225,6 @@ fn fullscreen_pipeline(
     }
 }
 
-fn is_srgb(format: wgpu::TextureFormat) -> bool {
-    format.is_srgb()
-}
-
 fn upsample_index(options: &RenderOptions) -> usize {
     match (options.reconstruction, options.upsample) {
         (Reconstruction::Planes, _) => 3,
@@ -380,7 +376,7 @@ impl TerrainRenderer {
                 camera,
                 &lattice,
                 &self.options.shade,
-                is_srgb(self.target_format),
+                self.target_format.is_srgb(),
             )
             .with_grid(&GridMirror::frame(terrain))
         };
@@ -405,12 +401,13 @@ impl TerrainRenderer {
     ) -> Result<u64, GpuError> {
         // The level graph's content fingerprint decides whether the emitter is current.
         let fingerprint = crate::emit::graph_fingerprint(terrain.base());
-        if self.emitter.as_ref().map(TerrainEmitter::fingerprint) != Some(fingerprint) {
-            self.emitter = Some(TerrainEmitter::new(terrain.base()));
-        }
-        let Some(emitter) = &self.emitter else {
-            return Err(GpuError::NotPrepared);
-        };
+        let current = self
+            .emitter
+            .take()
+            .filter(|e| e.fingerprint() == fingerprint);
+        let emitter: &TerrainEmitter = self
+            .emitter
+            .insert(current.unwrap_or_else(|| TerrainEmitter::new(terrain.base())));
         let plan = emitter.plan(Some(lattice_rect(lattice)), terrain.options().band);
         stats.pipeline_key = plan.key;
         stats.kept_nodes = plan.kept;

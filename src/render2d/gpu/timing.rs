@@ -2,6 +2,7 @@
 //! `TIMESTAMP_QUERY`), for benchmarks. Reading results waits for the GPU.
 
 use super::GpuError;
+use super::readback::map_read;
 
 /// A set of timestamp pairs and the buffers to resolve and read them.
 pub struct Timestamps {
@@ -59,28 +60,12 @@ impl Timestamps {
 
     /// Milliseconds of every pair, after the resolve was submitted.
     pub fn read_ms(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
-        let slice = self.read.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        let ms = {
-            let data = slice
-                .get_mapped_range()
-                .map_err(|e| GpuError::Readback(e.to_string()))?;
-            let ticks: &[u64] = bytemuck::cast_slice(&data);
+        map_read(device, &self.read, |data| {
+            let ticks: &[u64] = bytemuck::cast_slice(data);
             ticks
                 .chunks(2)
                 .map(|p| p[1].wrapping_sub(p[0]) as f64 * self.period_ns / 1.0e6)
                 .collect()
-        };
-        self.read.unmap();
-        Ok(ms)
+        })
     }
 }
