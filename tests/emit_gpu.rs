@@ -7,6 +7,7 @@ mod emit_support;
 
 use craterfield::emit::TerrainEmitter;
 use craterfield::field2d::{Aabb, Graph, Sample, Sdf};
+use craterfield::render2d::gpu::GpuContext;
 use emit_support::{
     Rng, every_variant_bounds, every_variant_graph, example_levels, prospero_graph,
 };
@@ -20,25 +21,11 @@ const NEAR: f32 = 24.0;
 /// Offset of the neighbours that tell whether the CPU gradient is well defined at a point.
 const PROBE: f32 = 4e-3;
 
-struct Gpu {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    name: String,
-}
+/// The library's headless device (the adapter wgpu finds; `WGPU_BACKEND` chooses).
+type Gpu = GpuContext;
 
 fn gpu() -> Option<Gpu> {
-    let instance = wgpu::Instance::default();
-    let adapter =
-        pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
-            .ok()?;
-    let info = adapter.get_info();
-    let (device, queue) =
-        pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default())).ok()?;
-    Some(Gpu {
-        device,
-        queue,
-        name: format!("{} ({:?}, {})", info.name, info.backend, info.driver),
-    })
+    GpuContext::new().ok()
 }
 
 const ENTRY: &str = "
@@ -308,7 +295,7 @@ fn main() {
             let missing = gpu.is_none();
             libtest_mimic::Trial::test(name, move || match gpu.as_ref() {
                 Some(gpu) => {
-                    println!("adapter: {}", gpu.name);
+                    println!("adapter: {}", gpu.describe());
                     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| test(gpu)))
                         .map_err(|e| panic_message(e).into())
                 }
