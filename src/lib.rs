@@ -7,6 +7,7 @@
 
 pub mod emit;
 pub mod field2d;
+pub mod march3d;
 pub mod net;
 #[cfg(feature = "raster")]
 pub mod render2d;

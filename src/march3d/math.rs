@@ -1,0 +1,1 @@
+//! Polynomial `exp`, `log`, `sin`, `cos` over any [`Pack`](super::simd::Pack).

@@ -1,0 +1,2 @@
+//! The counting backend: the scalar lane that also counts floating-point operations
+//! (filled in with the per-architecture backends).
