@@ -7,6 +7,7 @@
 
 pub mod math;
 pub mod plan;
+pub mod scene;
 pub mod simd;
 
 pub use plan::{Camera, Plan};
