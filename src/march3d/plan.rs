@@ -32,9 +32,10 @@
 //!   where `scale = 1 / (1 + amp * freq * VALUE_NOISE3_SLOPE)` keeps the result a
 //!   distance bound.
 //! * [`Shape::Rows`]: row `i` (0-based, `count` rows) is the part translated by
-//!   `(0, 0, i * spacing)`. Nearest-row repetition evaluates row `c = clamp(round(p.z /
-//!   spacing), 0, count - 1)` and its neighbour `c + sign(p.z - c * spacing)` when that is in
-//!   range (1-2 evaluations); without it, all rows, `min` over them.
+//!   `(0, 0, i * spacing)`. With `z = p.z - part.centre.z`, nearest-row repetition
+//!   evaluates row `c = clamp(round(z / spacing), 0, count - 1)` and its neighbour `c +
+//!   sign(z - c * spacing)` when that is in range (1-2 evaluations); without it, all rows,
+//!   `min` over them.
 //! * [`Shape::Mandelbulb`]: the power-8 bulb, `w = p - centre`, `m = dot(w, w)`, `dz = 1`;
 //!   `iterations` times: `dz = 8 * m^3.5 * dz + 1`, `w = (p - centre) + bulb8(w)`,
 //!   `m = dot(w, w)`, stop when `m > bailout`; distance `0.25 * ln(m) * sqrt(m) / dz`.
