@@ -22,9 +22,9 @@ use thiserror::Error;
 pub mod count;
 pub mod scalar;
 
-#[cfg(all(target_arch = "x86_64", not(feature = "force-scalar"), any()))]
+#[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
 pub mod avx2;
-#[cfg(all(target_arch = "aarch64", not(feature = "force-scalar"), any()))]
+#[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
 pub mod neon;
 
 /// The environment variable that forces an instruction set for the tracer.
@@ -214,9 +214,9 @@ impl Isa {
     pub fn available(self) -> bool {
         match self {
             Isa::Scalar => true,
-            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar"), any()))]
+            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
             Isa::Avx2 => avx2::Avx2::new().is_some(),
-            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar"), any()))]
+            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
             Isa::Neon => neon::Neon::new().is_some(),
             #[allow(unreachable_patterns)]
             _ => false,
@@ -243,11 +243,11 @@ impl Isa {
     pub fn run<K: PackKernel>(self, k: K) -> Result<K::Output, IsaError> {
         match self {
             Isa::Scalar => Ok(scalar::Scalar.call(k)),
-            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar"), any()))]
+            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
             Isa::Avx2 => avx2::Avx2::new()
                 .map(|p| p.call(k))
                 .ok_or(IsaError::Unavailable(self)),
-            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar"), any()))]
+            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
             Isa::Neon => neon::Neon::new()
                 .map(|p| p.call(k))
                 .ok_or(IsaError::Unavailable(self)),
