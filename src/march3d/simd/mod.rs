@@ -21,6 +21,8 @@ use thiserror::Error;
 
 pub mod count;
 pub mod scalar;
+#[cfg(test)]
+mod tests;
 
 #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
 pub mod avx2;
@@ -154,6 +156,8 @@ pub trait Pack: Copy + Send + Sync + 'static {
     /// The float's bits.
     fn bits(self, a: Self::F) -> Self::I;
     /// A float from bits.
+    // Named after `f32::from_bits`; `self` is the backend token, not the value converted.
+    #[allow(clippy::wrong_self_convention)]
     fn from_bits(self, a: Self::I) -> Self::F;
 
     /// Adds `n` floating-point operations to the counter of the counting backend; a no-op
