@@ -12,6 +12,7 @@
 
 pub mod cache;
 mod codegen2d;
+pub mod codegen3d;
 pub mod cull;
 mod fingerprint2d;
 pub mod fnv;

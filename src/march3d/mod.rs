@@ -5,6 +5,8 @@
 //! * [`simd`]: lane primitives per instruction set (AVX2+FMA, NEON, scalar, counting).
 //! * [`math`]: polynomial `exp`, `log`, `sin`, `cos` over those lanes.
 
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod math;
 pub mod plan;
 pub mod scene;

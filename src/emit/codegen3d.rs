@@ -1,0 +1,771 @@
+//! WGSL code generation for a 3D [`Plan`]: one complete compute module that renders the
+//! plan exactly as `march3d::plan` specifies.
+//!
+//! Everything the plan decides is baked into the text: the march settings and shading
+//! parameters become constants, the terrain's FBM a function with literal coefficients, and
+//! each node a straight-line function (lift, guard, shape) with its coordinates as exact
+//! literals. Only the camera and the image size come from the `MarchFrame` uniform. The
+//! hand-written half (`shaders/march3d.wgsl`: primitives, noise, the march, normals,
+//! shadows, shading) is appended; it refers to the emitted `em_` names.
+
+use std::fmt::Write as _;
+
+use glam::{Mat3, Vec3};
+use thiserror::Error;
+
+use super::wgsl::{NONFINITE_HELPER, f32_expr, f32_literal, u32_literal};
+use crate::march3d::plan::{
+    AoMode, Guard, Hash, Lift, Node, Plan, Prim, PrimKind, SKY, Shading, ShadowMode, Shape,
+    TerrainPlan,
+};
+
+/// The hand-written half of the module.
+pub const MARCH3D_WGSL: &str = include_str!("../../shaders/march3d.wgsl");
+
+/// Most octaves of a terrain's FBM ([`Fbm`](crate::march3d::plan::Fbm) documents 1..=12).
+pub const MAX_OCTAVES: u32 = 12;
+
+/// Why a plan cannot be turned into WGSL.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum Codegen3dError {
+    /// A value that must be finite is not (only `far` and `escape` may be `+inf`).
+    #[error("plan value {what} is {value}, not finite")]
+    NonFinite {
+        /// Which value.
+        what: String,
+        /// The value.
+        value: f32,
+    },
+    /// A node or the terrain names a material the plan does not have.
+    #[error("{what} uses material {index}, but the plan has {count} materials")]
+    Material {
+        /// Which part of the plan.
+        what: String,
+        /// The index used.
+        index: u32,
+        /// Materials in the plan.
+        count: usize,
+    },
+    /// A count outside its documented range.
+    #[error("plan value {what} is {value}: {expected}")]
+    Range {
+        /// Which value.
+        what: String,
+        /// The value.
+        value: u64,
+        /// What it should be.
+        expected: &'static str,
+    },
+}
+
+/// The complete WGSL compute module rendering `plan` (entry point `main`, workgroup 8x8,
+/// bindings: 0 the `MarchFrame` uniform, 1 an `rgba8unorm` storage texture).
+pub fn march_wgsl(plan: &Plan) -> Result<String, Codegen3dError> {
+    check_plan(plan)?;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "// Emitted by craterfield::emit::codegen3d for plan key {:#018x}.",
+        plan.key
+    );
+    out.push_str(NONFINITE_HELPER);
+    out.push_str(&constants(plan));
+    out.push_str(&hashes(plan.hash));
+    out.push_str(&height_fn(plan.terrain.as_ref()));
+    for (i, node) in plan.nodes.iter().enumerate() {
+        out.push_str(&node_fn(i, node));
+    }
+    out.push_str(&map_fns(plan));
+    out.push_str(&material_fn(plan));
+    out.push_str(&lights_fn(plan));
+    out.push_str(&bounds_shadow_fn(plan));
+    out.push_str(&ao_taps_fn(plan));
+    out.push('\n');
+    out.push_str(MARCH3D_WGSL);
+    Ok(out)
+}
+
+/// Checks what the WGSL needs of `plan`: finite numbers (`far` and `escape` may be `+inf`),
+/// material indices in range, octave and row counts in range.
+pub fn check_plan(plan: &Plan) -> Result<(), Codegen3dError> {
+    let m = &plan.march;
+    for (what, v) in [
+        ("march.hit", m.hit),
+        ("march.hit_per_t", m.hit_per_t),
+        ("march.step_factor", m.step_factor),
+        ("march.ray_offset", m.ray_offset),
+        ("march.normal_eps", m.normal_eps),
+        ("march.relax", m.relax),
+    ] {
+        finite(what, v)?;
+    }
+    for (what, v) in [("march.far", m.far), ("march.escape", m.escape)] {
+        if v.is_nan() || v == f32::NEG_INFINITY {
+            return Err(Codegen3dError::NonFinite {
+                what: what.into(),
+                value: v,
+            });
+        }
+    }
+    if let Some(top) = plan.early_out {
+        finite("early_out", top)?;
+    }
+    let count = plan.materials.len();
+    for (i, mat) in plan.materials.iter().enumerate() {
+        finite_vec(&format!("materials[{i}].colour"), mat.colour)?;
+        finite(&format!("materials[{i}].reflectivity"), mat.reflectivity)?;
+    }
+    if let Some(t) = &plan.terrain {
+        check_terrain(t, count)?;
+    }
+    for (i, node) in plan.nodes.iter().enumerate() {
+        check_node(i, node, count)?;
+    }
+    check_shading(&plan.shading)
+}
+
+fn finite(what: &str, value: f32) -> Result<(), Codegen3dError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(Codegen3dError::NonFinite {
+            what: what.into(),
+            value,
+        })
+    }
+}
+
+fn finite_vec(what: &str, v: Vec3) -> Result<(), Codegen3dError> {
+    for (axis, c) in ["x", "y", "z"].iter().zip(v.to_array()) {
+        finite(&format!("{what}.{axis}"), c)?;
+    }
+    Ok(())
+}
+
+fn material_in_range(what: &str, index: u32, count: usize) -> Result<(), Codegen3dError> {
+    if (index as usize) < count {
+        Ok(())
+    } else {
+        Err(Codegen3dError::Material {
+            what: what.into(),
+            index,
+            count,
+        })
+    }
+}
+
+fn check_terrain(t: &TerrainPlan, count: usize) -> Result<(), Codegen3dError> {
+    material_in_range("terrain", t.material, count)?;
+    let f = &t.fbm;
+    for (what, v) in [
+        ("terrain.base", f.base),
+        ("terrain.amplitude", f.amplitude),
+        ("terrain.frequency", f.frequency),
+        ("terrain.lacunarity", f.lacunarity),
+        ("terrain.gain", f.gain),
+        ("terrain.rotation", f.rotation),
+        ("terrain.step_scale", t.step_scale),
+    ] {
+        finite(what, v)?;
+    }
+    if !(1..=MAX_OCTAVES).contains(&f.octaves) {
+        return Err(Codegen3dError::Range {
+            what: "terrain.octaves".into(),
+            value: f.octaves.into(),
+            expected: "1..=12",
+        });
+    }
+    Ok(())
+}
+
+fn check_prim(what: &str, p: &Prim) -> Result<(), Codegen3dError> {
+    finite_vec(&format!("{what}.centre"), p.centre)?;
+    if let Some(r) = p.rotation {
+        for (i, c) in r.to_cols_array().iter().enumerate() {
+            finite(&format!("{what}.rotation[{i}]"), *c)?;
+        }
+    }
+    let scalars: Vec<f32> = match p.kind {
+        PrimKind::Sphere { r } => vec![r],
+        PrimKind::Box { half } => half.to_array().to_vec(),
+        PrimKind::RoundBox { half, r } => vec![half.x, half.y, half.z, r],
+        PrimKind::Capsule { a, b, r } => vec![a.x, a.y, a.z, b.x, b.y, b.z, r],
+        PrimKind::Torus { major, minor } => vec![major, minor],
+        PrimKind::Cylinder { r, h } => vec![r, h],
+        PrimKind::CappedCone { h, r1, r2 } => vec![h, r1, r2],
+        PrimKind::Octahedron { s } => vec![s],
+        PrimKind::Ellipsoid { r } => r.to_array().to_vec(),
+        PrimKind::Plane { normal, offset } => vec![normal.x, normal.y, normal.z, offset],
+    };
+    for v in scalars {
+        finite(&format!("{what}.kind"), v)?;
+    }
+    Ok(())
+}
+
+fn check_node(i: usize, node: &Node, count: usize) -> Result<(), Codegen3dError> {
+    let what = format!("nodes[{i}]");
+    material_in_range(&what, node.material, count)?;
+    match node.lift {
+        Lift::None => {}
+        Lift::Baked(y) => finite(&format!("{what}.lift"), y)?,
+        Lift::Ground { x, z } => {
+            finite(&format!("{what}.lift.x"), x)?;
+            finite(&format!("{what}.lift.z"), z)?;
+        }
+    }
+    if let Some(g) = &node.guard {
+        finite_vec(&format!("{what}.guard.centre"), g.centre)?;
+        finite_vec(&format!("{what}.guard.half"), g.half)?;
+        finite(&format!("{what}.guard.margin"), g.margin)?;
+    }
+    finite_vec(&format!("{what}.bound.centre"), node.bound.centre)?;
+    finite(&format!("{what}.bound.radius"), node.bound.radius)?;
+    match &node.shape {
+        Shape::Prim(p) => check_prim(&what, p),
+        Shape::Blend { k, parts } => {
+            finite(&format!("{what}.k"), *k)?;
+            parts.iter().try_for_each(|p| check_prim(&what, p))
+        }
+        Shape::Displaced { prim, amp, freq } => {
+            finite(&format!("{what}.amp"), *amp)?;
+            finite(&format!("{what}.freq"), *freq)?;
+            check_prim(&what, prim)
+        }
+        Shape::Rows {
+            part,
+            spacing,
+            count: rows,
+            ..
+        } => {
+            finite(&format!("{what}.spacing"), *spacing)?;
+            if *rows == 0 || *rows > i32::MAX as u32 {
+                return Err(Codegen3dError::Range {
+                    what: format!("{what}.count"),
+                    value: (*rows).into(),
+                    expected: "at least 1 row",
+                });
+            }
+            check_prim(&what, part)
+        }
+        Shape::Mandelbulb {
+            centre, bailout, ..
+        } => {
+            finite_vec(&format!("{what}.centre"), *centre)?;
+            finite(&format!("{what}.bailout"), *bailout)
+        }
+    }
+}
+
+fn check_shading(shading: &Shading) -> Result<(), Codegen3dError> {
+    match shading {
+        Shading::Paper(s) => {
+            for (i, l) in s.lights.iter().enumerate() {
+                finite_vec(&format!("lights[{i}].position"), l.position)?;
+                finite(&format!("lights[{i}].emission"), l.emission)?;
+            }
+            for (what, v) in [
+                ("shininess", s.shininess),
+                ("specular", s.specular),
+                ("ambient", s.ambient),
+                ("reflection_scale", s.reflection_scale),
+                ("fog", s.fog),
+                ("gamma", s.gamma),
+                ("shadow_k", s.shadow_k.unwrap_or(0.0)),
+            ] {
+                finite(what, v)?;
+            }
+        }
+        Shading::World(w) => {
+            finite_vec("sun", w.sun)?;
+            finite_vec("sun_colour", w.sun_colour)?;
+            finite_vec("sky[0]", w.sky[0])?;
+            finite_vec("sky[1]", w.sky[1])?;
+            finite("fog", w.fog)?;
+            finite("gamma", w.gamma)?;
+            if let AoMode::Adaptive { near_distance, .. } = w.ao {
+                finite("ao.near_distance", near_distance)?;
+            }
+            match w.shadow {
+                ShadowMode::Full { k, .. } => finite("shadow.k", k)?,
+                ShadowMode::TerrainAndBounds { spacing, .. } => finite("shadow.spacing", spacing)?,
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A literal of a value [`check_plan`] has proven finite.
+fn lit(v: f32) -> String {
+    f32_expr(v)
+}
+
+/// A constant's literal where `+inf` is allowed (`far`, `escape`): WGSL constants cannot be
+/// infinite, and the largest finite `f32` answers every `x > limit` test the same for
+/// finite `x`.
+fn limit_lit(v: f32) -> String {
+    f32_literal(v).unwrap_or_else(|_| f32_expr(f32::MAX))
+}
+
+fn vec3_lit(v: Vec3) -> String {
+    format!("vec3<f32>({}, {}, {})", lit(v.x), lit(v.y), lit(v.z))
+}
+
+fn mat3_lit(m: &Mat3) -> String {
+    // Both glam and WGSL store columns: the constructor takes them in order.
+    let c = m.to_cols_array();
+    let parts: Vec<String> = c.iter().map(|v| lit(*v)).collect();
+    format!("mat3x3<f32>({})", parts.join(", "))
+}
+
+fn bool_lit(b: bool) -> &'static str {
+    if b { "true" } else { "false" }
+}
+
+/// Every `em_` constant the hand-written half reads. Parameters of the shading model not in
+/// use get neutral values (the branches that read them are compiled out).
+fn constants(plan: &Plan) -> String {
+    let m = &plan.march;
+    let mut c: Vec<(&str, &str, String)> = vec![
+        ("em_max_steps", "u32", u32_literal(m.max_steps)),
+        ("em_hit", "f32", lit(m.hit)),
+        ("em_hit_per_t", "f32", lit(m.hit_per_t)),
+        ("em_far", "f32", limit_lit(m.far)),
+        ("em_escape", "f32", limit_lit(m.escape)),
+        ("em_step_factor", "f32", lit(m.step_factor)),
+        ("em_ray_offset", "f32", lit(m.ray_offset)),
+        ("em_normal_eps", "f32", lit(m.normal_eps)),
+        ("em_relax", "f32", lit(m.relax)),
+        (
+            "em_material_ids",
+            "bool",
+            bool_lit(plan.material_ids).into(),
+        ),
+        (
+            "em_has_terrain",
+            "bool",
+            bool_lit(plan.terrain.is_some()).into(),
+        ),
+        (
+            "em_terrain_material",
+            "u32",
+            u32_literal(plan.terrain.map_or(SKY, |t| t.material)),
+        ),
+        (
+            "em_analytic_normal",
+            "bool",
+            bool_lit(plan.terrain.is_some_and(|t| t.analytic_normal)).into(),
+        ),
+    ];
+    c.extend(shading_constants(&plan.shading));
+    let mut out = String::new();
+    for (name, ty, value) in c {
+        let _ = writeln!(out, "const {name}: {ty} = {value};");
+    }
+    out
+}
+
+fn shading_constants(shading: &Shading) -> Vec<(&'static str, &'static str, String)> {
+    let zero = || lit(0.0);
+    let zero3 = || vec3_lit(Vec3::ZERO);
+    match shading {
+        Shading::Paper(s) => vec![
+            ("em_paper", "bool", "true".into()),
+            ("em_ambient", "f32", lit(s.ambient)),
+            ("em_specular", "f32", lit(s.specular)),
+            ("em_shininess", "f32", lit(s.shininess)),
+            ("em_fog", "f32", lit(s.fog)),
+            ("em_gamma", "f32", lit(s.gamma)),
+            ("em_bounces", "u32", u32_literal(s.bounces)),
+            ("em_reflection_scale", "f32", lit(s.reflection_scale)),
+            (
+                "em_paper_shadows",
+                "bool",
+                bool_lit(s.shadow_k.is_some()).into(),
+            ),
+            ("em_shadow_k", "f32", lit(s.shadow_k.unwrap_or(0.0))),
+            ("em_sky0", "vec3<f32>", zero3()),
+            ("em_sky1", "vec3<f32>", zero3()),
+            ("em_sun", "vec3<f32>", zero3()),
+            ("em_sun_colour", "vec3<f32>", zero3()),
+            ("em_full_shadow", "bool", "false".into()),
+            ("em_shadow_steps", "u32", u32_literal(0)),
+            ("em_shadow_spacing", "f32", zero()),
+        ],
+        Shading::World(w) => {
+            let (full, steps, k, spacing) = match w.shadow {
+                ShadowMode::Full { steps, k } => (true, steps, k, 0.0),
+                ShadowMode::TerrainAndBounds { steps, spacing } => (false, steps, 0.0, spacing),
+            };
+            vec![
+                ("em_paper", "bool", "false".into()),
+                ("em_ambient", "f32", zero()),
+                ("em_specular", "f32", zero()),
+                ("em_shininess", "f32", zero()),
+                ("em_fog", "f32", lit(w.fog)),
+                ("em_gamma", "f32", lit(w.gamma)),
+                ("em_bounces", "u32", u32_literal(0)),
+                ("em_reflection_scale", "f32", zero()),
+                ("em_paper_shadows", "bool", "false".into()),
+                ("em_shadow_k", "f32", lit(k)),
+                ("em_sky0", "vec3<f32>", vec3_lit(w.sky[0])),
+                ("em_sky1", "vec3<f32>", vec3_lit(w.sky[1])),
+                ("em_sun", "vec3<f32>", vec3_lit(w.sun)),
+                ("em_sun_colour", "vec3<f32>", vec3_lit(w.sun_colour)),
+                ("em_full_shadow", "bool", bool_lit(full).into()),
+                ("em_shadow_steps", "u32", u32_literal(steps)),
+                ("em_shadow_spacing", "f32", lit(spacing)),
+            ]
+        }
+    }
+}
+
+fn hashes(hash: Hash) -> String {
+    let (h2, h3) = match hash {
+        Hash::DotFract => ("hash2_dot_fract", "hash3_dot_fract"),
+        Hash::Sin => ("hash2_sin", "hash3_sin"),
+    };
+    format!(
+        "fn em_hash2(q: vec2<f32>) -> f32 {{\n    return {h2}(q);\n}}\n\
+         fn em_hash3(q: vec3<f32>) -> f32 {{\n    return {h3}(q);\n}}\n"
+    )
+}
+
+/// `em_height(xz) -> (h, dh/dx, dh/dz)`: the FBM of `Fbm::height` with its coefficients as
+/// literals. The rows of `J` (world to noise coordinates) are `j0`, `j1`, so `J^T gn =
+/// gn.x j0 + gn.y j1`.
+fn height_fn(terrain: Option<&TerrainPlan>) -> String {
+    let Some(t) = terrain else {
+        return "// No terrain: objects stand on y = 0 (never called for the terrain).\n\
+                fn em_height(x: vec2<f32>) -> vec3<f32> {\n    return vec3<f32>(0.0);\n}\n"
+            .into();
+    };
+    let f = &t.fbm;
+    let (c, s) = (f.rotation.cos(), f.rotation.sin());
+    let mut out = String::from("fn em_height(x: vec2<f32>) -> vec3<f32> {\n");
+    let _ = writeln!(out, "    var q = x * {};", lit(f.frequency));
+    let _ = writeln!(out, "    var j0 = vec2<f32>({}, 0.0);", lit(f.frequency));
+    let _ = writeln!(out, "    var j1 = vec2<f32>(0.0, {});", lit(f.frequency));
+    out.push_str("    var s = 0.0;\n    var g = vec2<f32>(0.0);\n    var w = 1.0;\n");
+    let _ = writeln!(
+        out,
+        "    for (var o = 0u; o < {}; o++) {{",
+        u32_literal(f.octaves)
+    );
+    out.push_str("        let n = noise2(q);\n        s += w * n.x;\n");
+    out.push_str("        g += w * (n.y * j0 + n.z * j1);\n");
+    let (cl, sl, la) = (lit(c), lit(s), lit(f.lacunarity));
+    let _ = writeln!(
+        out,
+        "        q = {la} * vec2<f32>({cl} * q.x - {sl} * q.y, {sl} * q.x + {cl} * q.y);"
+    );
+    let _ = writeln!(out, "        let r0 = {la} * ({cl} * j0 - {sl} * j1);");
+    let _ = writeln!(out, "        let r1 = {la} * ({sl} * j0 + {cl} * j1);");
+    out.push_str("        j0 = r0;\n        j1 = r1;\n");
+    let _ = writeln!(out, "        w *= {};\n    }}", lit(f.gain));
+    let _ = writeln!(
+        out,
+        "    return vec3<f32>({} + {} * s, {} * g);\n}}",
+        lit(f.base),
+        lit(f.amplitude),
+        lit(f.amplitude)
+    );
+    out
+}
+
+/// The distance of `prim` at the node-local point named `p`.
+fn prim_expr(prim: &Prim, p: &str) -> String {
+    let moved = if prim.centre == Vec3::ZERO {
+        p.to_string()
+    } else {
+        format!("({p} - {})", vec3_lit(prim.centre))
+    };
+    let local = match &prim.rotation {
+        Some(r) => format!("({} * {moved})", mat3_lit(r)),
+        None => moved,
+    };
+    match prim.kind {
+        PrimKind::Sphere { r } => format!("sd_sphere({local}, {})", lit(r)),
+        PrimKind::Box { half } => format!("sd_box({local}, {})", vec3_lit(half)),
+        PrimKind::RoundBox { half, r } => {
+            format!("sd_round_box({local}, {}, {})", vec3_lit(half), lit(r))
+        }
+        // A zero-length capsule is a sphere (the segment formula would divide by zero).
+        PrimKind::Capsule { a, b, r } if a == b => {
+            format!("sd_sphere({local} - {}, {})", vec3_lit(a), lit(r))
+        }
+        PrimKind::Capsule { a, b, r } => format!(
+            "sd_capsule({local}, {}, {}, {})",
+            vec3_lit(a),
+            vec3_lit(b),
+            lit(r)
+        ),
+        PrimKind::Torus { major, minor } => {
+            format!("sd_torus({local}, {}, {})", lit(major), lit(minor))
+        }
+        PrimKind::Cylinder { r, h } => format!("sd_cylinder({local}, {}, {})", lit(r), lit(h)),
+        PrimKind::CappedCone { h, r1, r2 } => format!(
+            "sd_capped_cone({local}, {}, {}, {})",
+            lit(h),
+            lit(r1),
+            lit(r2)
+        ),
+        PrimKind::Octahedron { s } => format!("sd_octahedron({local}, {})", lit(s)),
+        PrimKind::Ellipsoid { r } => format!("sd_ellipsoid({local}, {})", vec3_lit(r)),
+        PrimKind::Plane { normal, offset } => {
+            format!("sd_plane({local}, {}, {})", vec3_lit(normal), lit(offset))
+        }
+    }
+}
+
+/// `fn em_node<i>(pw) -> f32`: lift, guard, then the shape, straight-line.
+fn node_fn(i: usize, node: &Node) -> String {
+    let mut out = format!("fn em_node{i}(pw: vec3<f32>) -> f32 {{\n");
+    match node.lift {
+        Lift::None => out.push_str("    let p = pw;\n"),
+        Lift::Baked(y) => {
+            let _ = writeln!(out, "    let p = pw - vec3<f32>(0.0, {}, 0.0);", lit(y));
+        }
+        Lift::Ground { x, z } => {
+            let _ = writeln!(
+                out,
+                "    let p = pw - vec3<f32>(0.0, em_height(vec2<f32>({}, {})).x, 0.0);",
+                lit(x),
+                lit(z)
+            );
+        }
+    }
+    if let Some(g) = &node.guard {
+        out.push_str(&guard_code(g));
+    }
+    out.push_str(&shape_code(&node.shape));
+    out.push_str("}\n");
+    out
+}
+
+fn guard_code(g: &Guard) -> String {
+    format!(
+        "    let db = guard_distance(p, {}, {});\n    if (db > {}) {{\n        return db;\n    }}\n",
+        vec3_lit(g.centre),
+        vec3_lit(g.half),
+        lit(g.margin)
+    )
+}
+
+fn shape_code(shape: &Shape) -> String {
+    match shape {
+        Shape::Prim(prim) => format!("    return {};\n", prim_expr(prim, "p")),
+        Shape::Blend { k, parts } => blend_code(*k, parts),
+        Shape::Displaced { prim, amp, freq } => {
+            let scale = 1.0 / (1.0 + amp * freq * crate::march3d::plan::VALUE_NOISE3_SLOPE);
+            format!(
+                "    return ({} + {} * (noise3(p * {}) - 0.5)) * {};\n",
+                prim_expr(prim, "p"),
+                lit(*amp),
+                lit(*freq),
+                lit(scale)
+            )
+        }
+        Shape::Rows {
+            part,
+            spacing,
+            count,
+            nearest,
+        } => rows_code(part, *spacing, *count, *nearest),
+        Shape::Mandelbulb {
+            centre,
+            iterations,
+            bailout,
+        } => format!(
+            "    return sd_mandelbulb(p, {}, {}, {});\n",
+            vec3_lit(*centre),
+            u32_literal(*iterations),
+            lit(*bailout)
+        ),
+    }
+}
+
+fn blend_code(k: f32, parts: &[Prim]) -> String {
+    let Some((first, rest)) = parts.split_first() else {
+        // No parts: nothing there.
+        return format!("    return {};\n", f32_expr(f32::INFINITY));
+    };
+    let mut out = format!("    var d = {};\n", prim_expr(first, "p"));
+    for part in rest {
+        // With k = 0 the smooth minimum is the plain minimum (its formula would divide 0 by 0).
+        if k > 0.0 {
+            let _ = writeln!(
+                out,
+                "    d = smin(d, {}, {});",
+                prim_expr(part, "p"),
+                lit(k)
+            );
+        } else {
+            let _ = writeln!(out, "    d = min(d, {});", prim_expr(part, "p"));
+        }
+    }
+    out.push_str("    return d;\n");
+    out
+}
+
+fn rows_code(part: &Prim, spacing: f32, count: u32, nearest: bool) -> String {
+    let sp = lit(spacing);
+    let row = |index: &str| {
+        format!(
+            "{}",
+            prim_expr(part, &format!("(p - vec3<f32>(0.0, 0.0, {index} * {sp}))"))
+        )
+    };
+    let last = lit((count - 1) as f32);
+    if nearest {
+        let mut out = format!("    let z = p.z - {};\n", lit(part.centre.z));
+        let _ = writeln!(out, "    let c = clamp(round(z / {sp}), 0.0, {last});");
+        let _ = writeln!(out, "    var d = {};", row("c"));
+        let _ = writeln!(out, "    let nb = c + sign(z - c * {sp});");
+        let _ = writeln!(
+            out,
+            "    if (nb != c && nb >= 0.0 && nb <= {last}) {{\n        let dn = {};\n        if (dn < d) {{\n            d = dn;\n        }}\n    }}",
+            row("nb")
+        );
+        out.push_str("    return d;\n");
+        out
+    } else {
+        let mut out = format!("    var d = {};\n", row("0.0"));
+        let _ = writeln!(
+            out,
+            "    for (var i = 1u; i < {}; i++) {{\n        let dn = {};\n        if (dn < d) {{\n            d = dn;\n        }}\n    }}",
+            u32_literal(count),
+            row("f32(i)")
+        );
+        out.push_str("    return d;\n");
+        out
+    }
+}
+
+/// `em_map` (distance and material) and `em_dist` (distance only), the scene distance of
+/// the plan's module doc.
+fn map_fns(plan: &Plan) -> String {
+    let mut out = String::new();
+    for (name, ret, with_material) in [("em_map", "MapHit", true), ("em_dist", "f32", false)] {
+        let _ = writeln!(out, "fn {name}(p: vec3<f32>) -> {ret} {{");
+        let _ = writeln!(out, "    var d = {};", f32_expr(f32::INFINITY));
+        out.push_str("    var m = SKY;\n");
+        if let Some(t) = &plan.terrain {
+            let _ = writeln!(
+                out,
+                "    d = (p.y - em_height(p.xz).x) * {};\n    m = {};",
+                lit(t.step_scale),
+                u32_literal(t.material)
+            );
+        }
+        let result = if with_material { "MapHit(d, m)" } else { "d" };
+        if let Some(top) = plan.early_out {
+            let _ = writeln!(
+                out,
+                "    if (p.y > {top}) {{\n        let e = p.y - {top};\n        if (e < d) {{\n            d = e;\n            m = SKY;\n        }}\n        return {result};\n    }}",
+                top = lit(top)
+            );
+        }
+        for (i, node) in plan.nodes.iter().enumerate() {
+            let _ = writeln!(
+                out,
+                "    let d{i} = em_node{i}(p);\n    if (d{i} < d) {{\n        d = d{i};\n        m = {};\n    }}",
+                u32_literal(node.material)
+            );
+        }
+        let _ = writeln!(out, "    return {result};\n}}");
+    }
+    out
+}
+
+fn material_fn(plan: &Plan) -> String {
+    let mut out = String::from("fn em_material(m: u32) -> Look {\n    switch m {\n");
+    for (i, mat) in plan.materials.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "        case {}: {{\n            return Look({}, {});\n        }}",
+            u32_literal(i as u32),
+            vec3_lit(mat.colour),
+            lit(mat.reflectivity)
+        );
+    }
+    out.push_str(
+        "        default: {\n            return Look(vec3<f32>(0.0), 0.0);\n        }\n    }\n}\n",
+    );
+    out
+}
+
+/// `em_lights`: the paper's lights, one call each, summed in order.
+fn lights_fn(plan: &Plan) -> String {
+    let mut out = String::from(
+        "fn em_lights(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> Lit {\n    var sum = Lit(0.0, 0.0);\n",
+    );
+    if let Shading::Paper(s) = &plan.shading {
+        for l in &s.lights {
+            let _ = writeln!(
+                out,
+                "    {{\n        let one = point_light(p, n, dir, {}, {});\n        sum.diffuse += one.diffuse;\n        sum.specular += one.specular;\n    }}",
+                vec3_lit(l.position),
+                lit(l.emission)
+            );
+        }
+    }
+    out.push_str("    return sum;\n}\n");
+    out
+}
+
+/// `em_bounds_shadow(o)`: whether the sun ray from `o` meets a node's bounding sphere ahead.
+fn bounds_shadow_fn(plan: &Plan) -> String {
+    let mut out = String::from("fn em_bounds_shadow(o: vec3<f32>) -> bool {\n");
+    let uses_bounds = matches!(
+        &plan.shading,
+        Shading::World(w) if matches!(w.shadow, ShadowMode::TerrainAndBounds { .. })
+    );
+    if uses_bounds {
+        for node in &plan.nodes {
+            let b = &node.bound;
+            let _ = writeln!(
+                out,
+                "    {{\n        let oc = {} - o;\n        let b = dot(oc, em_sun);\n        let c = dot(oc, oc) - {};\n        if (b > 0.0 && b * b > c) {{\n            return true;\n        }}\n    }}",
+                vec3_lit(b.centre),
+                lit(b.radius * b.radius)
+            );
+        }
+    }
+    out.push_str("    return false;\n}\n");
+    out
+}
+
+/// `em_ao_taps(p, n, t, m)`: the number of occlusion taps of a hit.
+fn ao_taps_fn(plan: &Plan) -> String {
+    let mut out =
+        String::from("fn em_ao_taps(p: vec3<f32>, n: vec3<f32>, t: f32, m: u32) -> u32 {\n");
+    match &plan.shading {
+        Shading::Paper(_) => out.push_str("    return 0u;\n"),
+        Shading::World(w) => match w.ao {
+            AoMode::Fixed(taps) => {
+                let _ = writeln!(out, "    return {};", u32_literal(taps));
+            }
+            AoMode::Adaptive {
+                near,
+                far,
+                near_distance,
+            } => {
+                // Flat terrain lying above the eye: none.
+                out.push_str(
+                    "    if (em_has_terrain && m == em_terrain_material && n.y > 0.9 && p.y > frame.position.y) {\n        return 0u;\n    }\n",
+                );
+                let _ = writeln!(
+                    out,
+                    "    if (t < {}) {{\n        return {};\n    }}\n    return {};",
+                    lit(near_distance),
+                    u32_literal(near),
+                    u32_literal(far)
+                );
+            }
+        },
+    }
+    out.push_str("}\n");
+    out
+}

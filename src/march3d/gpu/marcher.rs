@@ -1,0 +1,382 @@
+//! [`Marcher`]: the compute pipelines of emitted plans, the camera uniform, the readback
+//! target, and the pass that marches every pixel.
+
+use std::time::Instant;
+
+use crate::emit::ShaderCache;
+use crate::emit::codegen3d::march_wgsl;
+use crate::march3d::plan::{Camera, Plan};
+use crate::render2d::gpu::GpuError;
+use crate::render2d::gpu::readback::map_read;
+use crate::render2d::gpu::timing::Timestamps;
+
+use super::MarchGpuError;
+use super::uniforms::MarchFrame;
+
+/// Compiled plans kept at once (least recently used evicted beyond).
+const PIPELINE_CACHE: usize = 16;
+
+/// The shader's workgroup side (`@workgroup_size(8, 8)` in `shaders/march3d.wgsl`).
+const WORKGROUP: u32 = 8;
+
+/// The only target format: `rgba8unorm` rounds to nearest when storing, which is the CPU
+/// tracer's `floor(clamp(c, 0, 1) * 255 + 0.5)`.
+pub const TARGET_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// An offscreen storage texture and the buffer its pixels are copied into.
+struct Readback {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+    buffer: wgpu::Buffer,
+    width: u32,
+    height: u32,
+    padded_row: u32,
+}
+
+impl Readback {
+    fn new(device: &wgpu::Device, width: u32, height: u32) -> Readback {
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("craterfield march3d target"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: TARGET_FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let padded_row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("craterfield march3d readback"),
+            size: u64::from(padded_row) * u64::from(height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        Readback {
+            texture,
+            view,
+            buffer,
+            width,
+            height,
+            padded_row,
+        }
+    }
+
+    fn encode_copy(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.copy_texture_to_buffer(
+            self.texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.padded_row),
+                    rows_per_image: Some(self.height),
+                },
+            },
+            self.texture.size(),
+        );
+    }
+
+    /// The pixels, row by row without padding (after the copy was submitted).
+    fn read(&self, device: &wgpu::Device) -> Result<Vec<u8>, MarchGpuError> {
+        let (width, row) = (self.width as usize * 4, self.padded_row as usize);
+        Ok(map_read(device, &self.buffer, |data| {
+            data.chunks(row)
+                .flat_map(|line| &line[..width])
+                .copied()
+                .collect()
+        })?)
+    }
+}
+
+/// The GPU raymarcher on the caller's device. See the [module docs](super).
+pub struct Marcher {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    bind_layout: wgpu::BindGroupLayout,
+    pipeline_layout: wgpu::PipelineLayout,
+    frame: wgpu::Buffer,
+    pipelines: ShaderCache<wgpu::ComputePipeline>,
+    readback: Option<Readback>,
+    timestamps: Option<Timestamps>,
+}
+
+impl Marcher {
+    /// A raymarcher on `device` and `queue` (the caller's; the marcher keeps clones).
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Marcher, MarchGpuError> {
+        let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("craterfield march3d"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(
+                            std::mem::size_of::<MarchFrame>() as u64
+                        ),
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: TARGET_FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("craterfield march3d"),
+            bind_group_layouts: &[Some(&bind_layout)],
+            immediate_size: 0,
+        });
+        let frame = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("craterfield march3d frame"),
+            size: std::mem::size_of::<MarchFrame>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Ok(Marcher {
+            device: device.clone(),
+            queue: queue.clone(),
+            bind_layout,
+            pipeline_layout,
+            frame,
+            pipelines: ShaderCache::new(PIPELINE_CACHE),
+            readback: None,
+            timestamps: Timestamps::new(device, queue, 1),
+        })
+    }
+
+    /// Pipeline cache counters: `(hits, misses)`.
+    pub fn cache_counters(&self) -> (u64, u64) {
+        (self.pipelines.hits(), self.pipelines.misses())
+    }
+
+    /// Whether [`render_timed`](Self::render_timed) reports GPU time from timestamp queries
+    /// (`true`) or wall-clock time around the submitted pass (`false`).
+    pub fn gpu_timestamps(&self) -> bool {
+        self.timestamps.is_some()
+    }
+
+    /// Records the pass that renders `plan` seen by `camera` into `target` (a view of a 2D
+    /// `Rgba8Unorm` texture with `STORAGE_BINDING` usage, the whole image) on the caller's
+    /// encoder. The camera uniform is written through the queue, so one marcher renders one
+    /// frame per submission.
+    pub fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: &Plan,
+        camera: &Camera,
+        target: &wgpu::TextureView,
+    ) -> Result<(), MarchGpuError> {
+        let texture = target.texture();
+        if texture.format() != TARGET_FORMAT
+            || !texture
+                .usage()
+                .contains(wgpu::TextureUsages::STORAGE_BINDING)
+        {
+            return Err(MarchGpuError::Target {
+                format: texture.format(),
+                usage: texture.usage(),
+            });
+        }
+        self.prepare(plan, camera, texture.width(), texture.height())?;
+        self.encode_pass(
+            encoder,
+            plan.key,
+            target,
+            texture.width(),
+            texture.height(),
+            false,
+        );
+        Ok(())
+    }
+
+    /// Renders `plan` seen by `camera` at `width x height` and reads back the pixels: RGBA,
+    /// 4 bytes per pixel, rows top to bottom.
+    pub fn render_to_rgba(
+        &mut self,
+        plan: &Plan,
+        camera: &Camera,
+        width: u32,
+        height: u32,
+    ) -> Result<Vec<u8>, MarchGpuError> {
+        self.render_timed(plan, camera, width, height)
+            .map(|(pixels, _)| pixels)
+    }
+
+    /// Like [`render_to_rgba`](Self::render_to_rgba), with the frame's time in
+    /// milliseconds: GPU time of the pass from timestamp queries when the device has them
+    /// ([`gpu_timestamps`](Self::gpu_timestamps)), otherwise wall-clock time from submitting
+    /// the pass to its completion. Compiling a new plan's pipeline is not timed.
+    pub fn render_timed(
+        &mut self,
+        plan: &Plan,
+        camera: &Camera,
+        width: u32,
+        height: u32,
+    ) -> Result<(Vec<u8>, f64), MarchGpuError> {
+        self.prepare(plan, camera, width, height)?;
+        if self
+            .readback
+            .as_ref()
+            .is_none_or(|r| (r.width, r.height) != (width, height))
+        {
+            self.readback = Some(Readback::new(&self.device, width, height));
+        }
+        let Some(target) = self.readback.as_ref() else {
+            unreachable!("the readback target was just made");
+        };
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("craterfield march3d"),
+            });
+        let timed = self.timestamps.is_some();
+        self.encode_pass(&mut encoder, plan.key, &target.view, width, height, timed);
+        if let Some(ts) = &self.timestamps {
+            ts.encode_resolve(&mut encoder);
+            target.encode_copy(&mut encoder);
+            self.queue.submit([encoder.finish()]);
+            let pixels = target.read(&self.device)?;
+            let ms = ts.read_ms(&self.device)?.first().copied().unwrap_or(0.0);
+            return Ok((pixels, ms));
+        }
+        // No timestamp queries: the wall-clock time of the pass alone, then the copy.
+        let started = Instant::now();
+        self.queue.submit([encoder.finish()]);
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
+        let ms = started.elapsed().as_secs_f64() * 1e3;
+        let mut copy = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("craterfield march3d readback"),
+            });
+        target.encode_copy(&mut copy);
+        self.queue.submit([copy.finish()]);
+        Ok((target.read(&self.device)?, ms))
+    }
+
+    /// Checks the size and camera, compiles (or finds) the plan's pipeline and writes the
+    /// camera uniform.
+    fn prepare(
+        &mut self,
+        plan: &Plan,
+        camera: &Camera,
+        width: u32,
+        height: u32,
+    ) -> Result<(), MarchGpuError> {
+        let limit = self.device.limits().max_texture_dimension_2d;
+        if width == 0 || height == 0 || width > limit || height > limit {
+            return Err(MarchGpuError::Size {
+                width,
+                height,
+                limit,
+            });
+        }
+        let finite = [camera.position, camera.forward, camera.right, camera.up]
+            .iter()
+            .all(|v| v.is_finite());
+        if !(finite && camera.tan_half_fov.is_finite() && camera.tan_half_fov > 0.0) {
+            return Err(MarchGpuError::Camera);
+        }
+        let (device, layout) = (&self.device, &self.pipeline_layout);
+        self.pipelines
+            .get_or_try_insert_with(plan.key, || compile(device, layout, plan))?;
+        let frame = MarchFrame::new(camera, width, height);
+        self.queue
+            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
+        Ok(())
+    }
+
+    /// Records the compute pass over `target` with the pipeline of `key` (already
+    /// prepared), with timestamps around it when `timed`.
+    fn encode_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        key: u64,
+        target: &wgpu::TextureView,
+        width: u32,
+        height: u32,
+        timed: bool,
+    ) {
+        let Some(pipeline) = self.pipelines.peek(key) else {
+            unreachable!("prepare compiled the pipeline of this key");
+        };
+        let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("craterfield march3d"),
+            layout: &self.bind_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.frame.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(target),
+                },
+            ],
+        });
+        let timestamp_writes = self
+            .timestamps
+            .as_ref()
+            .filter(|_| timed)
+            .and_then(|ts| ts.pair(0))
+            .map(|(query_set, first)| wgpu::ComputePassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: Some(first),
+                end_of_pass_write_index: Some(first + 1),
+            });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("craterfield march3d"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups(width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1);
+    }
+}
+
+/// The compute pipeline of `plan`'s emitted module, with the device's validation errors as
+/// values.
+fn compile(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    plan: &Plan,
+) -> Result<wgpu::ComputePipeline, MarchGpuError> {
+    let source = march_wgsl(plan)?;
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("craterfield march3d"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("craterfield march3d"),
+        layout: Some(layout),
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    match pollster::block_on(scope.pop()) {
+        Some(e) => Err(MarchGpuError::Validation {
+            key: plan.key,
+            message: e.to_string(),
+        }),
+        None => Ok(pipeline),
+    }
+}

@@ -1,0 +1,62 @@
+//! The GPU raymarcher: a plan's emitted WGSL (`emit::codegen3d`) as a compute pass on the
+//! caller's wgpu device, writing an `rgba8unorm` storage texture.
+//!
+//! [`Marcher`] compiles one pipeline per plan key (an LRU [`ShaderCache`](crate::emit::ShaderCache)
+//! with hit/miss counters), records the pass into the caller's encoder and view
+//! ([`Marcher::encode`]), or renders and reads back pixels ([`Marcher::render_to_rgba`],
+//! [`Marcher::render_timed`]). Module map: [`uniforms`] (the camera uniform shared with
+//! WGSL), [`marcher`] (pipelines, targets and passes).
+
+pub mod marcher;
+pub mod uniforms;
+
+use thiserror::Error;
+
+use crate::emit::codegen3d::Codegen3dError;
+use crate::render2d::gpu::GpuError;
+
+pub use marcher::Marcher;
+pub use uniforms::MarchFrame;
+
+/// Why the GPU raymarcher could not render.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum MarchGpuError {
+    /// The plan cannot be turned into WGSL.
+    #[error("plan: {0}")]
+    Plan(#[from] Codegen3dError),
+    /// The image size is zero or above the device's texture limit.
+    #[error("image size {width}x{height} is not within 1..={limit} per side")]
+    Size {
+        /// Requested width.
+        width: u32,
+        /// Requested height.
+        height: u32,
+        /// The device's largest 2D texture side.
+        limit: u32,
+    },
+    /// The camera has a non-finite vector or a field of view that is not positive.
+    #[error("camera is not finite or its field of view is not positive")]
+    Camera,
+    /// The caller's target is not an `Rgba8Unorm` 2D texture with `STORAGE_BINDING` usage.
+    #[error(
+        "target texture must be Rgba8Unorm with STORAGE_BINDING usage, got {format:?} {usage:?}"
+    )]
+    Target {
+        /// The target's format.
+        format: wgpu::TextureFormat,
+        /// The target's usages.
+        usage: wgpu::TextureUsages,
+    },
+    /// The device rejected the emitted shader or its pipeline.
+    #[error("GPU validation failed for plan {key:#018x}: {message}")]
+    Validation {
+        /// The plan's key.
+        key: u64,
+        /// The driver's message.
+        message: String,
+    },
+    /// Reading back pixels or timestamps failed, or the device was lost.
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+}
