@@ -8,6 +8,7 @@
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod math;
+pub mod noise;
 pub mod plan;
 pub mod scene;
 pub mod simd;
