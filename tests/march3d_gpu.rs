@@ -85,10 +85,125 @@ fn bad_input_is_an_error(ctx: &GpuContext) -> TestResult {
     Ok(())
 }
 
+fn the_cache_hits_on_an_unchanged_key_and_misses_on_a_new_one(ctx: &GpuContext) -> TestResult {
+    let mut marcher = Marcher::new(&ctx.device, &ctx.queue)?;
+    let (_, plan, camera) = all_plans().remove(0);
+    let first = marcher.render_to_rgba(&plan, &camera, 32, 18)?;
+    assert_eq!(
+        marcher.cache_counters(),
+        (0, 1),
+        "the first render compiles"
+    );
+    // A moved camera with the same key is the same shader.
+    let mut moved = camera;
+    moved.position.x += 0.25;
+    let second = marcher.render_to_rgba(&plan, &moved, 32, 18)?;
+    assert_eq!(
+        marcher.cache_counters(),
+        (1, 1),
+        "an unchanged key is a hit"
+    );
+    assert_ne!(first, second, "the camera still moved");
+    let mut other = plan.clone();
+    other.key ^= 0xff;
+    other.nodes.pop();
+    marcher.render_to_rgba(&other, &camera, 32, 18)?;
+    assert_eq!(marcher.cache_counters(), (1, 2), "a new key is a miss");
+    let again = marcher.render_to_rgba(&plan, &camera, 32, 18)?;
+    assert_eq!(marcher.cache_counters(), (2, 2), "both stay cached");
+    assert_eq!(first, again, "the cached pipeline renders the same pixels");
+    Ok(())
+}
+
+/// A storage texture of the caller's, rendered through `encode` on the caller's encoder,
+/// holds the same pixels as `render_to_rgba`; other formats are refused.
+fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
+    let (w, h) = (40, 24);
+    let mut marcher = Marcher::new(&ctx.device, &ctx.queue)?;
+    let (_, plan, camera) = all_plans().remove(0);
+    let expected = marcher.render_to_rgba(&plan, &camera, w, h)?;
+    let make = |format, usage| {
+        ctx.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("caller's target"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC;
+    let texture = make(wgpu::TextureFormat::Rgba8Unorm, usage);
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    marcher.encode(&mut encoder, &plan, &camera, &view)?;
+    let row = (w * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("caller's readback"),
+        size: u64::from(row * h),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(h),
+            },
+        },
+        texture.size(),
+    );
+    ctx.queue.submit([encoder.finish()]);
+    buffer
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    ctx.device.poll(wgpu::PollType::wait_indefinitely())?;
+    let got: Vec<u8> = buffer
+        .slice(..)
+        .get_mapped_range()?
+        .chunks(row as usize)
+        .flat_map(|line| line[..(w * 4) as usize].to_vec())
+        .collect();
+    assert_eq!(got, expected, "encode() and render_to_rgba() differ");
+    let srgb = make(
+        wgpu::TextureFormat::Rgba8UnormSrgb,
+        wgpu::TextureUsages::COPY_SRC,
+    );
+    let srgb_view = srgb.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    let refused = marcher.encode(&mut encoder, &plan, &camera, &srgb_view);
+    assert!(
+        matches!(refused, Err(MarchGpuError::Target { .. })),
+        "{refused:?}"
+    );
+    Ok(())
+}
+
 fn main() {
     let args = Arguments::from_args();
-    let tests: [(&str, GpuTest); 2] = [
+    let tests: [(&str, GpuTest); 4] = [
         ("every_plan_renders", every_plan_renders),
+        (
+            "the_cache_hits_on_an_unchanged_key_and_misses_on_a_new_one",
+            the_cache_hits_on_an_unchanged_key_and_misses_on_a_new_one,
+        ),
+        (
+            "encoding_into_the_callers_texture_matches",
+            encoding_into_the_callers_texture_matches,
+        ),
         ("bad_input_is_an_error", bad_input_is_an_error),
     ];
     let ctx = context();
