@@ -611,12 +611,7 @@ fn blend_code(k: f32, parts: &[Prim]) -> String {
 
 fn rows_code(part: &Prim, spacing: f32, count: u32, nearest: bool) -> String {
     let sp = lit(spacing);
-    let row = |index: &str| {
-        format!(
-            "{}",
-            prim_expr(part, &format!("(p - vec3<f32>(0.0, 0.0, {index} * {sp}))"))
-        )
-    };
+    let row = |index: &str| prim_expr(part, &format!("(p - vec3<f32>(0.0, 0.0, {index} * {sp}))"));
     let last = lit((count - 1) as f32);
     if nearest {
         let mut out = format!("    let z = p.z - {};\n", lit(part.centre.z));
