@@ -176,10 +176,10 @@ impl Pack for Neon {
     }
     #[inline(always)]
     fn bitmask(self, m: uint32x4_t) -> u32 {
-        const WEIGHTS: [u32; 4] = [1, 2, 4, 8];
-        // SAFETY: NEON is available; `WEIGHTS` holds 4 integers. Each lane's top bit becomes
-        // its weight and the horizontal add packs them.
-        unsafe { vaddvq_u32(vandq_u32(vshrq_n_u32::<31>(m), vld1q_u32(WEIGHTS.as_ptr()))) }
+        const LANE: [i32; 4] = [0, 1, 2, 3];
+        // SAFETY: NEON is available; `LANE` holds 4 integers. Each lane's top bit moves to
+        // bit `lane` and the horizontal add packs them (the x86 `movemask` rule).
+        unsafe { vaddvq_u32(vshlq_u32(vshrq_n_u32::<31>(m), vld1q_s32(LANE.as_ptr()))) }
     }
     #[inline(always)]
     fn splat_i(self, v: i32) -> int32x4_t {
