@@ -432,9 +432,10 @@ fn hashes(hash: Hash) -> String {
     )
 }
 
-/// `em_height(xz) -> (h, dh/dx, dh/dz)`: the FBM of `Fbm::height` with its coefficients as
-/// literals. The rows of `J` (world to noise coordinates) are `j0`, `j1`, so `J^T gn =
-/// gn.x j0 + gn.y j1`.
+/// `em_height(xz) -> (h, dh/dx, dh/dz)`: `Fbm::height` unrolled over its octaves. Each
+/// octave's weight `amplitude * gain^o` and its `amplitude * gain^o * J_o^T` (with `J_o =
+/// frequency * (lacunarity R)^o`) are computed in `f64` here and baked as `f32` literals, as
+/// the CPU tracer does, so both sum the same rounded coefficients.
 fn height_fn(terrain: Option<&TerrainPlan>) -> String {
     let Some(t) = terrain else {
         return "// No terrain: objects stand on y = 0 (never called for the terrain).\n\
@@ -442,35 +443,41 @@ fn height_fn(terrain: Option<&TerrainPlan>) -> String {
             .into();
     };
     let f = &t.fbm;
-    let (c, s) = (f.rotation.cos(), f.rotation.sin());
+    let octaves = f.octaves.clamp(1, MAX_OCTAVES) as usize;
+    let (sin, cos) = f64::from(f.rotation).sin_cos();
+    let lac = f64::from(f.lacunarity);
+    let (a, b) = (lac * cos, lac * sin);
+    let (al, bl) = (lit(a as f32), lit(b as f32));
+    let mut j = [f64::from(f.frequency), 0.0, 0.0, f64::from(f.frequency)];
+    let mut w = f64::from(f.amplitude);
     let mut out = String::from("fn em_height(x: vec2<f32>) -> vec3<f32> {\n");
     let _ = writeln!(out, "    var q = x * {};", lit(f.frequency));
-    let _ = writeln!(out, "    var j0 = vec2<f32>({}, 0.0);", lit(f.frequency));
-    let _ = writeln!(out, "    var j1 = vec2<f32>(0.0, {});", lit(f.frequency));
-    out.push_str("    var s = 0.0;\n    var g = vec2<f32>(0.0);\n    var w = 1.0;\n");
-    let _ = writeln!(
-        out,
-        "    for (var o = 0u; o < {}; o++) {{",
-        u32_literal(f.octaves)
-    );
-    out.push_str("        let n = noise2(q);\n        s += w * n.x;\n");
-    out.push_str("        g += w * (n.y * j0 + n.z * j1);\n");
-    let (cl, sl, la) = (lit(c), lit(s), lit(f.lacunarity));
-    let _ = writeln!(
-        out,
-        "        q = {la} * vec2<f32>({cl} * q.x - {sl} * q.y, {sl} * q.x + {cl} * q.y);"
-    );
-    let _ = writeln!(out, "        let r0 = {la} * ({cl} * j0 - {sl} * j1);");
-    let _ = writeln!(out, "        let r1 = {la} * ({sl} * j0 + {cl} * j1);");
-    out.push_str("        j0 = r0;\n        j1 = r1;\n");
-    let _ = writeln!(out, "        w *= {};\n    }}", lit(f.gain));
-    let _ = writeln!(
-        out,
-        "    return vec3<f32>({} + {} * s, {} * g);\n}}",
-        lit(f.base),
-        lit(f.amplitude),
-        lit(f.amplitude)
-    );
+    let _ = writeln!(out, "    var h = {};", lit(f.base));
+    out.push_str("    var g = vec2<f32>(0.0);\n    var n: vec3<f32>;\n");
+    for o in 0..octaves {
+        let jt = [w * j[0], w * j[2], w * j[1], w * j[3]].map(|v| lit(v as f32));
+        let _ = writeln!(out, "    n = noise2(q);");
+        let _ = writeln!(out, "    h += {} * n.x;", lit(w as f32));
+        let _ = writeln!(
+            out,
+            "    g += vec2<f32>({} * n.y + {} * n.z, {} * n.y + {} * n.z);",
+            jt[0], jt[1], jt[2], jt[3]
+        );
+        if o + 1 < octaves {
+            let _ = writeln!(
+                out,
+                "    q = vec2<f32>({al} * q.x - {bl} * q.y, {bl} * q.x + {al} * q.y);"
+            );
+        }
+        j = [
+            a * j[0] - b * j[2],
+            a * j[1] - b * j[3],
+            b * j[0] + a * j[2],
+            b * j[1] + a * j[3],
+        ];
+        w *= f64::from(f.gain);
+    }
+    out.push_str("    return vec3<f32>(h, g);\n}\n");
     out
 }
 
