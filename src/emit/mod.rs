@@ -9,6 +9,8 @@
 //! * [`cache`]: bounded LRU cache of pipelines by key (generic).
 //! * [`terrain2d`]: [`TerrainEmitter`], a 2D level graph to `base_sample`.
 //! * [`cull`]: which sub-graphs a view cannot see, and why that is safe.
+//! * [`world3d`]: a 3D scene and a camera to a [`Plan`](crate::march3d::Plan): culling,
+//!   LOD, step tiers, baking and the shader-side switches.
 
 pub mod cache;
 mod codegen2d;
@@ -17,8 +19,10 @@ pub mod cull;
 mod fingerprint2d;
 pub mod fnv;
 mod helpers2d;
+mod objects3d;
 pub mod terrain2d;
 pub mod wgsl;
+pub mod world3d;
 
 pub use cache::ShaderCache;
 pub use cull::{CullPlan, CulledChild, Fate};

@@ -740,7 +740,7 @@ fn validate_march(m: &MarchSettings) -> Result<(), SceneError> {
     check_range("march.hit", m.hit, 1.0e-9, 1.0)?;
     check_range("march.hit_per_t", m.hit_per_t, 0.0, 0.1)?;
     check_range("march.escape", m.escape, 1.0e-3, 1.0e7)?;
-    if !(m.far > 0.0) {
+    if m.far.is_nan() || m.far <= 0.0 {
         return Err(invalid("march.far", "must be positive (infinity allowed)"));
     }
     check_range("march.ray_offset", m.ray_offset, 0.0, 1.0)?;
