@@ -4,7 +4,9 @@
 //! Each function reduces its argument to a short interval (by powers of two, or by
 //! multiples of pi/2 in the Cody-Waite manner) and evaluates a minimax polynomial there with
 //! multiply-adds. Each public function counts as one operation on the counting backend
-//! ([`Pack::as_one_op`]), the reference paper's convention for math-library calls.
+//! ([`Pack::as_one_op`]), the reference paper's convention for math-library calls. The
+//! closures handed to `as_one_op` are `#[inline(always)]`: without it they are compiled
+//! outside the backend's instruction set (see [`PackKernel`](super::simd::PackKernel)).
 //!
 //! Measured accuracy against double precision over dense sweeps (the tests check these
 //! bounds, with a little margin, on every backend, fused and unfused):
@@ -14,8 +16,8 @@
 //! * `log` over the positive normals: at most 0.85 ulp; `log2`: 1.0 ulp with fused
 //!   multiply-adds, 1.9 ulp without.
 //! * `sin` and `cos` for |x| <= 8192, including the floats next to multiples of pi/2: at
-//!   most 2.3 ulp. Beyond that the reduction loses accuracy gradually (exact products need
-//!   |x| < 12800) and the results stay in [-1, 1].
+//!   most 2.3 ulp. Beyond that the reduction loses accuracy gradually (its products are
+//!   exact up to |x| of about 12800); beyond 2^24 the results mean nothing.
 //! * `pow(x, y)`: `log2`'s error is multiplied by `|y log2 x|` in the result: at most
 //!   1.4 ulp per unit of `1 + |y log2 x|`.
 //!
@@ -45,28 +47,36 @@ const PIO2_4: f32 = 2.563_344e-12;
 /// `e^x`.
 #[inline(always)]
 pub fn exp<P: Pack>(p: P, x: P::F) -> P::F {
-    p.as_one_op(|| {
-        // Beyond these the result is +inf or rounds to 0 anyway; the clamp keeps n in
-        // [-150, 128] (NaN passes through).
-        let x = clamp(p, x, -104.0, 89.0);
-        let n = p.round(p.mul(x, p.splat(LOG2_E)));
-        // Cody-Waite: x - n ln 2 in two steps keeps the reduced argument exact.
-        let r = p.fnma(n, p.splat(LN2_HI), x);
-        let r = p.fnma(n, p.splat(LN2_LO), r);
-        scale(p, exp_poly(p, r), n)
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            // Beyond these the result is +inf or rounds to 0 anyway; the clamp keeps n in
+            // [-150, 128] (NaN passes through).
+            let x = clamp(p, x, -104.0, 89.0);
+            let ni = p.round_i(p.mul(x, p.splat(LOG2_E)));
+            let n = p.to_f32(ni);
+            // Cody-Waite: x - n ln 2 in two steps keeps the reduced argument exact.
+            let r = p.fnma(n, p.splat(LN2_HI), x);
+            let r = p.fnma(n, p.splat(LN2_LO), r);
+            scale(p, exp_poly(p, r), ni)
+        },
+    )
 }
 
 /// `2^x`.
 #[inline(always)]
 pub fn exp2<P: Pack>(p: P, x: P::F) -> P::F {
-    p.as_one_op(|| {
-        let x = clamp(p, x, -151.0, 129.0);
-        let n = p.round(x);
-        // `x - n` is exact; scaling by ln 2 costs half an ulp of a number below 0.35.
-        let r = p.mul(p.sub(x, n), p.splat(std::f32::consts::LN_2));
-        scale(p, exp_poly(p, r), n)
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            let x = clamp(p, x, -151.0, 129.0);
+            let ni = p.round_i(x);
+            let n = p.to_f32(ni);
+            // `x - n` is exact; scaling by ln 2 costs half an ulp of a number below 0.35.
+            let r = p.mul(p.sub(x, n), p.splat(std::f32::consts::LN_2));
+            scale(p, exp_poly(p, r), ni)
+        },
+    )
 }
 
 /// `x` limited to [lo, hi], NaN kept (the min/max rule returns the second operand on NaN).
@@ -89,43 +99,55 @@ fn exp_poly<P: Pack>(p: P, r: P::F) -> P::F {
     p.add(p.fma(q, r2, r), p.splat(1.0))
 }
 
-/// `e 2^n` for integral n in [-151, 129], in two factors so that each is a normal power
-/// of two: the product overflows to +inf or rounds into the subnormals as it should.
+/// `e 2^n` for n in [-151, 129], in two factors so that each is a normal power of two:
+/// the product overflows to +inf or rounds into the subnormals as it should.
 #[inline(always)]
-fn scale<P: Pack>(p: P, e: P::F, n: P::F) -> P::F {
-    let n1 = p.floor(p.mul(n, p.splat(0.5)));
-    let n2 = p.sub(n, n1);
-    let pow2 = |k: P::F| p.from_bits(p.shl_i::<23>(p.add_i(p.round_i(k), p.splat_i(127))));
-    p.mul(p.mul(e, pow2(n1)), pow2(n2))
+fn scale<P: Pack>(p: P, e: P::F, n: P::I) -> P::F {
+    // n1 = floor(n / 2) with a logical shift of a biased (non-negative) n.
+    let n1 = p.sub_i(p.shr_i::<1>(p.add_i(n, p.splat_i(1024))), p.splat_i(512));
+    let n2 = p.sub_i(n, n1);
+    p.mul(p.mul(e, pow2(p, n1)), pow2(p, n2))
+}
+
+/// `2^k` for k in [-126, 127], from the exponent field.
+#[inline(always)]
+fn pow2<P: Pack>(p: P, k: P::I) -> P::F {
+    p.from_bits(p.shl_i::<23>(p.add_i(k, p.splat_i(127))))
 }
 
 /// The natural logarithm, for `x > 0`.
 #[inline(always)]
 pub fn log<P: Pack>(p: P, x: P::F) -> P::F {
-    p.as_one_op(|| {
-        let (e, f, lnf) = log_parts(p, x);
-        // e ln 2 + ln(1 + f), with ln 2 split so the sum keeps its low bits.
-        let y = p.fma(e, p.splat(LN2_LO), lnf);
-        let y = p.add(f, y);
-        let y = p.fma(e, p.splat(LN2_HI), y);
-        log_special(p, x, y)
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            let (e, f, lnf) = log_parts(p, x);
+            // e ln 2 + ln(1 + f), with ln 2 split so the sum keeps its low bits.
+            let y = p.fma(e, p.splat(LN2_LO), lnf);
+            let y = p.add(f, y);
+            let y = p.fma(e, p.splat(LN2_HI), y);
+            log_special(p, x, y)
+        },
+    )
 }
 
 /// The base-2 logarithm, for `x > 0`.
 #[inline(always)]
 pub fn log2<P: Pack>(p: P, x: P::F) -> P::F {
-    p.as_one_op(|| {
-        let (e, f, lnf) = log_parts(p, x);
-        // log2(1 + f) = (f + lnf) log2(e), with f's product kept exact-ish by splitting the
-        // constant's rounding error into a second multiply-add.
-        const LOG2_E_LO: f32 = 1.925_963e-8;
-        let s = p.add(f, lnf);
-        let y = p.fma(s, p.splat(LOG2_E_LO), p.mul(lnf, p.splat(LOG2_E)));
-        let y = p.fma(f, p.splat(LOG2_E), y);
-        let y = p.add(e, y);
-        log_special(p, x, y)
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            let (e, f, lnf) = log_parts(p, x);
+            // log2(1 + f) = (f + lnf) log2(e), with f's product kept exact-ish by splitting the
+            // constant's rounding error into a second multiply-add.
+            const LOG2_E_LO: f32 = 1.925_963e-8;
+            let s = p.add(f, lnf);
+            let y = p.fma(s, p.splat(LOG2_E_LO), p.mul(lnf, p.splat(LOG2_E)));
+            let y = p.fma(f, p.splat(LOG2_E), y);
+            let y = p.add(e, y);
+            log_special(p, x, y)
+        },
+    )
 }
 
 /// Splits `x = 2^e (1 + f)` with `1 + f` in [sqrt(1/2), sqrt(2)) and returns `(e, f,
@@ -150,11 +172,10 @@ fn log_parts<P: Pack>(p: P, x: P::F) -> (P::F, P::F, P::F) {
     // ln(1 + f) = f - f^2/2 + f^3 q(f), q of degree 8 (Cephes' minimax), by Estrin.
     let f2 = p.mul(f, f);
     let f4 = p.mul(f2, f2);
-    let c = |a: f32, b: f32| p.fma(f, p.splat(a), p.splat(b));
-    let q01 = c(-2.499_999_4e-1, 3.333_333e-1);
-    let q23 = c(-1.666_805_7e-1, 2.000_071_4e-1);
-    let q45 = c(-1.242_014_1e-1, 1.424_932_3e-1);
-    let q67 = c(-1.151_461e-1, 1.167_699_84e-1);
+    let q01 = p.fma(f, p.splat(-2.499_999_4e-1), p.splat(3.333_333e-1));
+    let q23 = p.fma(f, p.splat(-1.666_805_7e-1), p.splat(2.000_071_4e-1));
+    let q45 = p.fma(f, p.splat(-1.242_014_1e-1), p.splat(1.424_932_3e-1));
+    let q67 = p.fma(f, p.splat(-1.151_461e-1), p.splat(1.167_699_84e-1));
     let q03 = p.fma(q23, f2, q01);
     let q47 = p.fma(q67, f2, q45);
     let q = p.fma(p.splat(7.037_683_6e-2), f4, q47);
@@ -173,56 +194,69 @@ fn log_special<P: Pack>(p: P, x: P::F, y: P::F) -> P::F {
 /// `x^y` for `x > 0`, as `2^(y log2 x)`; 0 where `x <= 0`.
 #[inline(always)]
 pub fn pow<P: Pack>(p: P, x: P::F, y: P::F) -> P::F {
-    p.as_one_op(|| {
-        let r = exp2(p, p.mul(y, log2(p, x)));
-        p.select(p.gt(x, p.splat(0.0)), r, p.splat(0.0))
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            let r = exp2(p, p.mul(y, log2(p, x)));
+            p.select(p.gt(x, p.splat(0.0)), r, p.splat(0.0))
+        },
+    )
 }
 
 /// The sine.
 #[inline(always)]
 pub fn sin<P: Pack>(p: P, x: P::F) -> P::F {
-    p.as_one_op(|| {
-        let (q, r) = reduce(p, x);
-        let (s, c) = sin_cos_poly(p, r);
-        quadrant(p, q, s, c)
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            let (q, r) = reduce(p, x);
+            let (s, c) = sin_cos_poly(p, r);
+            quadrant(p, q, s, c)
+        },
+    )
 }
 
 /// The cosine.
 #[inline(always)]
 pub fn cos<P: Pack>(p: P, x: P::F) -> P::F {
-    p.as_one_op(|| {
-        let (q, r) = reduce(p, x);
-        let (s, c) = sin_cos_poly(p, r);
-        // cos(x) = sin(x + pi/2): one quadrant on.
-        quadrant(p, p.add_i(q, p.splat_i(1)), s, c)
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            let (q, r) = reduce(p, x);
+            let (s, c) = sin_cos_poly(p, r);
+            // cos(x) = sin(x + pi/2): one quadrant on.
+            quadrant(p, p.add_i(q, p.splat_i(1)), s, c)
+        },
+    )
 }
 
 /// The sine and the cosine, sharing the reduction and both polynomials.
 #[inline(always)]
 pub fn sin_cos<P: Pack>(p: P, x: P::F) -> (P::F, P::F) {
-    p.as_one_op(|| {
-        let (q, r) = reduce(p, x);
-        let (s, c) = sin_cos_poly(p, r);
-        (
-            quadrant(p, q, s, c),
-            quadrant(p, p.add_i(q, p.splat_i(1)), s, c),
-        )
-    })
+    p.as_one_op(
+        #[inline(always)]
+        || {
+            let (q, r) = reduce(p, x);
+            let (s, c) = sin_cos_poly(p, r);
+            (
+                quadrant(p, q, s, c),
+                quadrant(p, p.add_i(q, p.splat_i(1)), s, c),
+            )
+        },
+    )
 }
 
 /// `x = q pi/2 + r` with |r| <= pi/4 (Cody-Waite, four parts of pi/2).
 #[inline(always)]
 fn reduce<P: Pack>(p: P, x: P::F) -> (P::I, P::F) {
     let t = p.mul(x, p.splat(FRAC_2_PI));
-    let qf = p.round(t);
+    let q = p.round_i(t);
+    let qf = p.to_f32(q);
     let r = p.fnma(qf, p.splat(PIO2_1), x);
     let r = p.fnma(qf, p.splat(PIO2_2), r);
     let r = p.fnma(qf, p.splat(PIO2_3), r);
     let r = p.fnma(qf, p.splat(PIO2_4), r);
-    (p.round_i(t), r)
+    (q, r)
 }
 
 /// `(sin r, cos r)` for |r| <= pi/4 (Cephes' minimax polynomials in r^2).

@@ -592,6 +592,7 @@ struct MathKernel<'a> {
 impl PackKernel for MathKernel<'_> {
     type Output = Vec<f32>;
 
+    #[inline(always)]
     fn run<P: Pack>(self, p: P) -> Vec<f32> {
         let w = P::WIDTH;
         let mut out = vec![0.0; self.xs.len()];
@@ -1014,4 +1015,57 @@ fn a_panic_inside_as_one_op_does_not_leave_counting_off() {
     assert!(r.is_err());
     let _ = Counting.add(1.0, 2.0);
     assert_eq!(count::take_flops(), 1);
+}
+
+/// Runs a [`MathKernel`] `reps` times and returns the seconds it took.
+#[derive(Clone)]
+struct Timed<'a>(MathKernel<'a>, usize);
+
+impl PackKernel for Timed<'_> {
+    type Output = f64;
+
+    #[inline(always)]
+    fn run<P: Pack>(self, p: P) -> f64 {
+        let t = std::time::Instant::now();
+        for _ in 0..self.1 {
+            std::hint::black_box(self.0.clone().run(p));
+        }
+        t.elapsed().as_secs_f64()
+    }
+}
+
+/// Throughput of the polynomial math per backend against the standard library; a
+/// measurement, not a check (`cargo test --release -- --ignored --nocapture math_throughput`).
+#[test]
+#[ignore = "a measurement; prints nanoseconds per value"]
+fn math_throughput() {
+    use std::hint::black_box;
+    let xs = pad(sweep(0.001, 80.0, 1 << 16));
+    let ys = vec![15.0; xs.len()];
+    let reps = 50;
+    let per_value = |secs: f64| secs * 1e9 / (reps * xs.len()) as f64;
+    let fns: [(MathFn, fn(f32) -> f32); 5] = [
+        (MathFn::Exp, f32::exp),
+        (MathFn::Log, f32::ln),
+        (MathFn::Sin, f32::sin),
+        (MathFn::Cos, f32::cos),
+        (MathFn::Pow, |x| x.powf(15.0)),
+    ];
+    for (f, std_fn) in fns {
+        let t = std::time::Instant::now();
+        for _ in 0..reps {
+            let v: Vec<f32> = xs.iter().map(|&x| std_fn(black_box(x))).collect();
+            black_box(v);
+        }
+        let mut line = format!("{f:?}: std {:.2}", per_value(t.elapsed().as_secs_f64()));
+        let k = MathKernel {
+            f,
+            xs: &xs,
+            ys: &ys,
+        };
+        for (name, _, secs) in on_every_backend(Timed(k, reps)) {
+            line += &format!(", {name} {:.2}", per_value(secs));
+        }
+        eprintln!("{line} ns/value");
+    }
 }
