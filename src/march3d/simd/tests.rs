@@ -1044,7 +1044,8 @@ fn math_throughput() {
     let ys = vec![15.0; xs.len()];
     let reps = 50;
     let per_value = |secs: f64| secs * 1e9 / (reps * xs.len()) as f64;
-    let fns: [(MathFn, fn(f32) -> f32); 5] = [
+    type StdFn = fn(f32) -> f32;
+    let fns: [(MathFn, StdFn); 5] = [
         (MathFn::Exp, f32::exp),
         (MathFn::Log, f32::ln),
         (MathFn::Sin, f32::sin),
