@@ -25,7 +25,7 @@
 //! * `guard = Some(g)`: `q = abs(p - g.centre) - g.half`, `db = length(max(q, 0))`; when
 //!   `db > g.margin` the node returns `db` without evaluating its shape (the shape lies
 //!   inside the box, so `db` is a lower bound of its distance). Otherwise the shape.
-//! * [`Shape::Prim`]: [`Prim::distance`].
+//! * [`Shape::Prim`]: the primitive's formula ([`PrimKind`]) at `rotation * (p - centre)`.
 //! * [`Shape::Blend`]: smooth union of the parts, left to right, with the polynomial smooth
 //!   minimum `smin(a, b, k) = min(a, b) - h*h*k/4` where `h = max(k - |a - b|, 0) / k`.
 //! * [`Shape::Displaced`]: `(prim(p) + amp * (value_noise3(p * freq) - 0.5)) * scale`
@@ -97,7 +97,7 @@ pub const SKY: u32 = u32::MAX;
 /// A steepest-slope bound of [`value_noise3`](Fbm) over unit frequency, used by
 /// [`Shape::Displaced`]: the gradient of the trilinear smoothstep value noise is at most
 /// `1.5 * sqrt(3)` (each partial is at most 1.5).
-pub const VALUE_NOISE3_SLOPE: f32 = 2.598_076_2;
+pub const VALUE_NOISE3_SLOPE: f32 = 2.598_076;
 
 /// A world ready to render for one camera.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -530,7 +530,7 @@ impl Camera {
     /// field of view of `fov_deg` degrees; `None` when the vectors are degenerate (zero,
     /// parallel, not finite) or the angle is not in (0, 180).
     pub fn looking(position: Vec3, forward: Vec3, up: Vec3, fov_deg: f32) -> Option<Camera> {
-        if !position.is_finite() || !(fov_deg > 0.0 && fov_deg < 180.0) {
+        if !(position.is_finite() && fov_deg > 0.0 && fov_deg < 180.0) {
             return None;
         }
         let forward = forward.try_normalize()?;
