@@ -7,6 +7,7 @@
 
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod cpu;
 pub mod math;
 pub mod noise;
 pub mod plan;

@@ -59,7 +59,10 @@ pub fn hash2<P: Pack>(p: P, hash: Hash, qx: P::F, qy: P::F) -> P::F {
             fract(p, p.mul(p.add(x, y), z))
         }
         Hash::Sin => {
-            let d = p.fma(qx, p.splat(127.1), p.mul(qy, p.splat(311.7)));
+            // Unfused on purpose: the sine's argument is in the thousands and its result
+            // is scaled by 43758, so one rounding of difference between fused and unfused
+            // backends would give another hash.
+            let d = p.add(p.mul(qx, p.splat(127.1)), p.mul(qy, p.splat(311.7)));
             fract(p, p.mul(math::sin(p, d), p.splat(43_758.547)))
         }
     }
@@ -81,10 +84,10 @@ pub fn hash3<P: Pack>(p: P, hash: Hash, qx: P::F, qy: P::F, qz: P::F) -> P::F {
             fract(p, p.mul(p.add(x, y), z))
         }
         Hash::Sin => {
-            let d = p.fma(
-                qx,
-                p.splat(127.1),
-                p.fma(qy, p.splat(311.7), p.mul(qz, p.splat(74.7))),
+            // Unfused on purpose (see `hash2`).
+            let d = p.add(
+                p.add(p.mul(qx, p.splat(127.1)), p.mul(qy, p.splat(311.7))),
+                p.mul(qz, p.splat(74.7)),
             );
             fract(p, p.mul(math::sin(p, d), p.splat(43_758.547)))
         }
