@@ -811,7 +811,8 @@ mod tests {
     fn bulb8_f64(w: [f64; 3]) -> [f64; 3] {
         let rho2 = w[0] * w[0] + w[2] * w[2];
         let rho = rho2.sqrt();
-        let (xn, zn) = (w[0] / rho, w[2] / rho);
+        // On the axis any unit direction will do, as in the lane version.
+        let (xn, zn) = (w[0] / rho.max(1e-300), w[2] / rho.max(1e-300));
         let sq = |(c, s): (f64, f64)| (c * c - s * s, 2.0 * s * c);
         let (ca, sa) = sq(sq((zn * zn - xn * xn, 2.0 * xn * zn)));
         let (cb, sb) = sq(sq((w[1] * w[1] - rho2, 2.0 * w[1] * rho)));
