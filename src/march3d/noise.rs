@@ -252,13 +252,14 @@ impl Fbm {
 
     /// An upper bound of `|grad h|` over the plane.
     ///
-    /// Derivation: in one cell of the 2D value noise, `dn/dx = du(f.x) * ((b - a) (1 - u.y)
-    /// + (d - c) u.y)`: a convex combination of two hash differences, each in (-1, 1), times
-    /// `du = 6 f (1 - f) <= 1.5`; so each partial is at most 1.5 and `|grad n| <= 1.5
-    /// sqrt(2)`. Octave `o` is `n(J_o (x, z))` with `J_o = frequency * lacunarity^o * R^o`,
-    /// whose operator norm is `frequency * lacunarity^o` (R is a rotation), weighted by
-    /// `amplitude * gain^o`. Summing the octaves' bounds: `|amplitude| * sum_o |gain|^o *
-    /// frequency * lacunarity^o * 1.5 sqrt(2)`.
+    /// Derivation: in one cell of the 2D value noise,
+    /// `dn/dx = du(f.x) * ((b - a) (1 - u.y) + (d - c) u.y)`: a convex combination of two
+    /// hash differences, each in (-1, 1), times `du = 6 f (1 - f) <= 1.5`; so each partial
+    /// is at most 1.5 and `|grad n| <= 1.5 sqrt(2)`. Octave `o` is `n(J_o (x, z))` with
+    /// `J_o = frequency * lacunarity^o * R^o`, whose operator norm is
+    /// `frequency * lacunarity^o` (R is a rotation), weighted by `amplitude * gain^o`.
+    /// Summing the octaves' bounds:
+    /// `|amplitude| * sum_o |gain|^o * frequency * lacunarity^o * 1.5 sqrt(2)`.
     pub fn slope_bound(&self) -> f32 {
         let per = (self.gain.abs() as f64) * (self.lacunarity as f64);
         let sum: f64 = (0..self.octaves.min(MAX_OCTAVES))
