@@ -141,8 +141,6 @@ pub struct EmitOptions {
     pub tiers: StepTiers,
     /// Width over height of the images the plan is for (the frustum's side planes).
     pub aspect: f32,
-    /// Added to the tallest visible object for the height early-out.
-    pub early_out_margin: f32,
 }
 
 impl Default for EmitOptions {
@@ -152,7 +150,6 @@ impl Default for EmitOptions {
             lod_distance: 60.0,
             tiers: StepTiers::default(),
             aspect: 16.0 / 9.0,
-            early_out_margin: 0.5,
         }
     }
 }
@@ -307,8 +304,7 @@ impl WorldEmitter {
                 nodes
                     .iter()
                     .map(|n| n.bound.centre.y + n.bound.radius)
-                    .fold(f32::NEG_INFINITY, f32::max)
-                    + opts.early_out_margin,
+                    .fold(f32::NEG_INFINITY, f32::max),
             ),
             _ => None,
         };
@@ -333,7 +329,6 @@ impl WorldEmitter {
     fn key(&self, vis: &Visibility, steps: u32, opts: &EmitOptions) -> u64 {
         let mut h = Fnv64::new();
         h.u64(self.fingerprint).u32(steps).u32(opts.bits());
-        h.f32(opts.early_out_margin);
         for &(i, lod) in &vis.objects {
             h.u32(i).u32(lod as u32);
         }
@@ -488,9 +483,6 @@ fn check_options(opts: &EmitOptions) -> Result<(), EmitError3d> {
     }
     if !(opts.aspect > 0.0 && opts.aspect.is_finite()) {
         return bad("aspect", "must be positive and finite");
-    }
-    if !(opts.early_out_margin >= 0.0 && opts.early_out_margin.is_finite()) {
-        return bad("early_out_margin", "must be non-negative and finite");
     }
     if opts.tiers.base == 0 || opts.tiers.tiers.iter().any(|t| t.1 == 0) {
         return bad("tiers", "step counts must be positive");

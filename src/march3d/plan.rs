@@ -9,9 +9,12 @@
 //! 1. `d = +inf`, `m = SKY`.
 //! 2. Terrain (if any): `dt = (p.y - h(p.xz)) * terrain.step_scale`, material
 //!    `terrain.material`. `h` is [`Fbm::height`].
-//! 3. Early out (if `early_out = Some(top)`) and `p.y > top`: the objects all lie below
-//!    `top`, so `d = min(dt, p.y - top)` and the material stays the terrain's (or `SKY` when
-//!    `p.y - top` is smaller). No node is evaluated.
+//! 3. Early out (if `early_out = Some(top)`) and `p.y > top + EARLY_OUT_MARGIN`: the
+//!    objects all lie below `top`, so `d = min(dt, p.y - top)` and the material stays the
+//!    terrain's (or `SKY` when `p.y - top` is smaller). No node is evaluated. The margin
+//!    keeps that bound well above any hit threshold: right above `top` it would otherwise
+//!    read as a surface, and rays skimming over the objects would stop on an invisible
+//!    plane.
 //! 4. Otherwise each [`Node`] in order: `dn = node_distance(p)`; when `dn < d`:
 //!    `d = dn, m = node.material` (strictly less: the first node wins ties).
 //! 5. Material IDs (`material_ids = true`) are tracked as above during the march. When
@@ -91,6 +94,9 @@
 use glam::{Mat3, Vec3};
 use serde::{Deserialize, Serialize};
 
+/// How far above the tallest object the height early-out starts (see the module doc).
+pub const EARLY_OUT_MARGIN: f32 = 0.5;
+
 /// The material index of the background.
 pub const SKY: u32 = u32::MAX;
 
@@ -109,7 +115,7 @@ pub struct Plan {
     pub march: March,
     /// The heightfield terrain, if the world has one.
     pub terrain: Option<TerrainPlan>,
-    /// Above this height only the terrain can be near (height early-out).
+    /// The top of the tallest object (height early-out, see the module doc).
     pub early_out: Option<f32>,
     /// The objects that survived culling, at their LOD.
     pub nodes: Vec<Node>,

@@ -225,7 +225,7 @@ fn d_sky() -> [Vec3; 2] {
     [Vec3::new(0.75, 0.82, 0.9), Vec3::new(0.3, 0.5, 0.85)]
 }
 fn d_world_fog() -> f32 {
-    0.012
+    0.006
 }
 
 /// March settings; a field left out takes the lighting model's default

@@ -9,7 +9,8 @@ use super::lanes::V3;
 use crate::march3d::math;
 use crate::march3d::noise::{FbmLanes, noise3};
 use crate::march3d::plan::{
-    Guard, Hash, Lift, Node, Plan, Prim, PrimKind, SKY, Shape, Sphere, VALUE_NOISE3_SLOPE,
+    EARLY_OUT_MARGIN, Guard, Hash, Lift, Node, Plan, Prim, PrimKind, SKY, Shape, Sphere,
+    VALUE_NOISE3_SLOPE,
 };
 use crate::march3d::simd::{Pack, PackKernel};
 
@@ -391,7 +392,7 @@ fn map_inline<P: Pack>(
     let (mut de, mut me) = (d, m);
     if let Some(top) = s.early_out {
         let dtop = p.sub(q.y, p.splat(top));
-        above = p.gt(q.y, p.splat(top));
+        above = p.gt(q.y, p.splat(top + EARLY_OUT_MARGIN));
         let sky = p.lt(dtop, d);
         de = p.min(dtop, d);
         me = p.select_i(sky, p.splat_i(SKY_I), m);

@@ -24,6 +24,8 @@ impl Pack for Avx2 {
 
     #[inline]
     fn call<K: PackKernel>(self, k: K) -> K::Output {
+        // Out of line: a kernel is compiled once per call type, not into each caller.
+        #[inline(never)]
         #[target_feature(enable = "avx2,fma")]
         unsafe fn inner<K: PackKernel>(p: Avx2, k: K) -> K::Output {
             k.run(p)

@@ -65,7 +65,13 @@ impl Pack for Counting {
 
     #[inline]
     fn call<K: PackKernel>(self, k: K) -> K::Output {
-        k.run(self)
+        // Out of line, like the SIMD backends' target-feature functions: a kernel is
+        // compiled once per call type, not inlined into each caller.
+        #[inline(never)]
+        fn inner<K: PackKernel>(k: K) -> K::Output {
+            k.run(Counting)
+        }
+        inner(k)
     }
 
     #[inline(always)]

@@ -25,6 +25,8 @@ impl Pack for Neon {
 
     #[inline]
     fn call<K: PackKernel>(self, k: K) -> K::Output {
+        // Out of line: a kernel is compiled once per call type, not into each caller.
+        #[inline(never)]
         #[target_feature(enable = "neon")]
         unsafe fn inner<K: PackKernel>(p: Neon, k: K) -> K::Output {
             k.run(p)

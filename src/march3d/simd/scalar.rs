@@ -15,7 +15,13 @@ impl Pack for Scalar {
 
     #[inline]
     fn call<K: PackKernel>(self, k: K) -> K::Output {
-        k.run(self)
+        // Out of line, like the SIMD backends' target-feature functions: a kernel is
+        // compiled once per call type, not inlined into each caller.
+        #[inline(never)]
+        fn inner<K: PackKernel>(k: K) -> K::Output {
+            k.run(Scalar)
+        }
+        inner(k)
     }
 
     #[inline(always)]
