@@ -5,12 +5,14 @@ mod barrage;
 mod bench;
 mod bench_eval;
 mod bench_fidelity;
+mod bench_march3d;
 mod bench_render2d;
 mod bench_sim;
 mod demo;
 mod diff_cmd;
 mod fidelity_scenes;
 mod frame;
+mod march3d_cmd;
 #[cfg(feature = "peers")]
 mod peers;
 mod render_frame;
@@ -27,7 +29,7 @@ use clap::{Parser, Subcommand};
 #[command(
     name = "craterfield",
     version,
-    about = "Destructible 2D SDF terrain: demo, level checks, replays, benchmarks"
+    about = "Destructible 2D SDF terrain and 3D SDF worlds: demo, level checks, replays, 3D renders, benchmarks"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -68,6 +70,9 @@ enum Command {
     /// Compare two images (pixel statistics and the FLIP perceptual score): exit 0 when
     /// within the thresholds, 1 when over, 2 when they cannot be compared.
     Diff(diff_cmd::Options),
+    /// Render a 3D SDF scene (builtin or RON file) with the CPU sphere tracer or the GPU
+    /// raymarcher.
+    March3d(march3d_cmd::Options),
     /// Release-mode benchmarks.
     Bench {
         #[command(subcommand)]
@@ -164,6 +169,10 @@ enum BenchCommand {
     /// direct evaluation vs the reduced-scale pipeline at every scale and mode on the GPU, and
     /// the CPU twin.
     Render2d(bench_render2d::Options),
+    /// The 3D renderers: the paper scenes on the CPU tracer (seconds per frame, flops per
+    /// cycle, speedup over scalar) and the forest world's emitter optimizations (SDF
+    /// evaluations and steps per pixel, GPU time), each switched off in turn.
+    March3d(bench_march3d::Options),
 }
 
 /// Ticks of the demo's scripted match (20 s at 60 Hz).
@@ -200,6 +209,7 @@ fn main() -> ExitCode {
             command: LevelCommand::Check { file },
         } => level_check(&file),
         Command::Diff(options) => diff_cmd::run(&options),
+        Command::March3d(options) => march3d_cmd::run(&options),
         Command::Bench {
             command: BenchCommand::Field { json, points },
         } => bench::field(json, points),
@@ -230,6 +240,9 @@ fn main() -> ExitCode {
         Command::Bench {
             command: BenchCommand::Render2d(options),
         } => bench_render2d::run(&options),
+        Command::Bench {
+            command: BenchCommand::March3d(options),
+        } => bench_march3d::run(&options),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,376 @@
+//! `craterfield bench march3d`: the 3D renderers measured in one run.
+//!
+//! 1. The reference paper's scene0 and Mandelbulb at 1280x720 with the `paper` preset on
+//!    the CPU sphere tracer: seconds per frame on the scalar path and on the widest SIMD
+//!    path, one thread and all threads; GFLOP per frame from the counting backend (one flop
+//!    per arithmetic operation or math-library call, the paper's convention); flops per
+//!    cycle from those and the measured time at the stated clock.
+//! 2. The forest world: SDF evaluations and march steps per pixel (counting backend) and
+//!    GPU frame time with every emitter optimization on, all off (naive), and each one off,
+//!    plus the visual difference of the optimized render against the naive one.
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use craterfield::emit::world3d::{EmitOptions, Optimization};
+use craterfield::march3d::cpu::{self, TraceOptions};
+use craterfield::march3d::scene::Scene;
+use craterfield::march3d::simd::Isa;
+use craterfield::march3d::{Camera, Plan};
+use craterfield::visdiff::{DiffOptions, compare};
+use serde::Serialize;
+
+use crate::march3d_cmd::{parse_size, plan_for};
+
+/// Options of `bench march3d`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Options {
+    /// Print one JSON object instead of tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Timed frames per CPU configuration (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub frames: u32,
+    /// The clock in GHz used for flops per cycle (default: the nominal frequency the
+    /// operating system reports).
+    #[arg(long)]
+    pub ghz: Option<f64>,
+    /// Size of the paper scenes.
+    #[arg(long, default_value = "1280x720")]
+    pub size: String,
+    /// Size of the forest world's counted and GPU renders.
+    #[arg(long, default_value = "320x180")]
+    pub world_size: String,
+    /// Skip the scalar path (it takes tens of seconds per frame).
+    #[arg(long)]
+    pub no_scalar: bool,
+}
+
+#[derive(Serialize)]
+struct Row {
+    scene: String,
+    #[serde(rename = "impl")]
+    implementation: String,
+    threads: usize,
+    s_per_frame: f64,
+    gflop: f64,
+    flops_per_cycle: f64,
+    speedup_vs_scalar: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct EmitterRow {
+    config: String,
+    sdf_evals_per_px: f64,
+    steps_per_px: f64,
+    gpu_ms: Option<f64>,
+    nodes: usize,
+    max_steps: u32,
+}
+
+#[derive(Serialize)]
+struct Report {
+    clock_ghz: f64,
+    clock_source: String,
+    adapter: String,
+    rows: Vec<Row>,
+    emitter: Vec<EmitterRow>,
+    world_size: String,
+    naive_vs_all: Option<VisualDiff>,
+}
+
+#[derive(Serialize)]
+struct VisualDiff {
+    differing_fraction: f64,
+    pixel_tolerance: u8,
+    mean: f64,
+    flip: f64,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// The nominal clock from `/proc/cpuinfo`, in GHz.
+fn os_clock_ghz() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/cpuinfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("cpu MHz"))?;
+    let mhz: f64 = line.split(':').nth(1)?.trim().parse().ok()?;
+    Some(mhz / 1000.0)
+}
+
+fn time_cpu(
+    plan: &Plan,
+    cam: &Camera,
+    size: (u32, u32),
+    isa: Isa,
+    threads: usize,
+    frames: u32,
+) -> Result<f64, String> {
+    let opts = TraceOptions {
+        threads,
+        isa: Some(isa),
+        ..TraceOptions::default()
+    };
+    let mut s = Vec::new();
+    for _ in 0..frames.max(1) {
+        let t = Instant::now();
+        cpu::render(plan, cam, size.0, size.1, &opts).map_err(|e| e.to_string())?;
+        s.push(t.elapsed().as_secs_f64());
+    }
+    Ok(median(s))
+}
+
+fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, String> {
+    let size = parse_size(&o.size)?;
+    let best = Isa::best().map_err(|e| e.to_string())?;
+    let mut rows = Vec::new();
+    for name in ["scene0", "mandelbulb"] {
+        let scene = Scene::builtin(name).map_err(|e| e.to_string())?;
+        let (plan, cam) = plan_for(&scene, &EmitOptions::paper(), size)?;
+        let (_, stats) = cpu::render_counted(&plan, &cam, size.0, size.1, all_threads)
+            .map_err(|e| e.to_string())?;
+        let gflop = stats.flops as f64 * 1e-9;
+        let mut threads = vec![1];
+        if all_threads > 1 {
+            threads.push(all_threads);
+        }
+        let mut scalar_s = Vec::new();
+        let isas: Vec<Isa> = if o.no_scalar || best == Isa::Scalar {
+            vec![best]
+        } else {
+            vec![Isa::Scalar, best]
+        };
+        for isa in isas {
+            for (k, &t) in threads.iter().enumerate() {
+                let frames = if isa == Isa::Scalar { 1 } else { o.frames };
+                let s = time_cpu(&plan, &cam, size, isa, t, frames)?;
+                if isa == Isa::Scalar {
+                    scalar_s.push(s);
+                }
+                let speedup = scalar_s.get(k).map(|sc| sc / s);
+                rows.push(Row {
+                    scene: name.to_string(),
+                    implementation: isa.name().to_string(),
+                    threads: t,
+                    s_per_frame: s,
+                    gflop,
+                    flops_per_cycle: gflop * 1e9 / (s * ghz * 1e9 * t as f64),
+                    speedup_vs_scalar: speedup,
+                });
+                if !o.json {
+                    eprintln!("  {name} {} x{t}: {s:.3} s", isa.name());
+                }
+            }
+        }
+    }
+    Ok(rows)
+}
+
+struct Gpu {
+    ctx: craterfield::render2d::gpu::GpuContext,
+    marcher: craterfield::march3d::gpu::Marcher,
+}
+
+fn gpu() -> Result<Gpu, String> {
+    let ctx = craterfield::render2d::gpu::GpuContext::new().map_err(|e| e.to_string())?;
+    let marcher = craterfield::march3d::gpu::Marcher::new(&ctx.device, &ctx.queue)
+        .map_err(|e| e.to_string())?;
+    Ok(Gpu { ctx, marcher })
+}
+
+fn emitter_rows(
+    o: &Options,
+    gpu: &mut Option<Gpu>,
+) -> Result<(Vec<EmitterRow>, Option<VisualDiff>), String> {
+    let size = parse_size(&o.world_size)?;
+    let scene = Scene::builtin("forest").map_err(|e| e.to_string())?;
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut configs = vec![
+        ("naive".to_string(), EmitOptions::naive()),
+        ("all".to_string(), EmitOptions::default()),
+    ];
+    for opt in Optimization::ALL {
+        configs.push((
+            format!("no-{}", opt.name()),
+            EmitOptions::default().without(opt),
+        ));
+    }
+    let mut rows = Vec::new();
+    let mut images = Vec::new();
+    for (config, opts) in configs {
+        let (plan, cam) = plan_for(&scene, &opts, size)?;
+        let (img, stats) =
+            cpu::render_counted(&plan, &cam, size.0, size.1, threads).map_err(|e| e.to_string())?;
+        let px = stats.pixels.max(1) as f64;
+        let gpu_ms = match gpu {
+            Some(g) => {
+                g.marcher
+                    .render_timed(&plan, &cam, size.0, size.1)
+                    .map_err(|e| e.to_string())?;
+                let (_, ms) = g
+                    .marcher
+                    .render_timed(&plan, &cam, size.0, size.1)
+                    .map_err(|e| e.to_string())?;
+                Some(ms)
+            }
+            None => None,
+        };
+        if !o.json {
+            eprintln!(
+                "  forest {config}: {:.1} evals/px",
+                stats.sdf_evals as f64 / px
+            );
+        }
+        if config == "naive" || config == "all" {
+            images.push(img);
+        }
+        rows.push(EmitterRow {
+            config,
+            sdf_evals_per_px: stats.sdf_evals as f64 / px,
+            steps_per_px: stats.steps as f64 / px,
+            gpu_ms,
+            nodes: plan.nodes.len(),
+            max_steps: plan.march.max_steps,
+        });
+    }
+    let diff = match images.as_slice() {
+        [naive, all] => {
+            let a = image::RgbaImage::from_raw(size.0, size.1, naive.rgba.clone())
+                .ok_or("bad image")?;
+            let b =
+                image::RgbaImage::from_raw(size.0, size.1, all.rgba.clone()).ok_or("bad image")?;
+            let opts = DiffOptions {
+                pixel_tolerance: 16,
+                ..DiffOptions::default()
+            };
+            let r = compare(&a, &b, &opts).map_err(|e| e.to_string())?;
+            Some(VisualDiff {
+                differing_fraction: r.differing_fraction,
+                pixel_tolerance: r.pixel_tolerance,
+                mean: r.mean,
+                flip: r.flip,
+            })
+        }
+        _ => None,
+    };
+    let _ = &gpu;
+    Ok((rows, diff))
+}
+
+/// Runs the benchmark.
+pub fn run(o: &Options) -> Result<ExitCode, String> {
+    let (ghz, clock_source) = match (o.ghz, os_clock_ghz()) {
+        (Some(g), _) => (g, "given with --ghz".to_string()),
+        (None, Some(g)) => (g, "nominal clock from /proc/cpuinfo".to_string()),
+        (None, None) => return Err("no clock frequency known: pass --ghz".to_string()),
+    };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut gpu = gpu().ok();
+    let adapter = gpu
+        .as_ref()
+        .map_or_else(|| "none".to_string(), |g| g.ctx.describe());
+    let rows = paper_rows(o, ghz, threads)?;
+    let (emitter, naive_vs_all) = emitter_rows(o, &mut gpu)?;
+    let report = Report {
+        clock_ghz: ghz,
+        clock_source,
+        adapter,
+        rows,
+        emitter,
+        world_size: o.world_size.clone(),
+        naive_vs_all,
+    };
+    if o.json {
+        println!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        print_tables(&report, o);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The reference implementation's seconds per frame on this machine class (C, gcc -O3
+/// -mavx2 -mfma): one thread and two threads with OpenMP, and its scalar baseline.
+fn reference(scene: &str) -> (f64, f64, f64) {
+    match scene {
+        "scene0" => (1.47, 0.95, 32.9),
+        _ => (2.16, 1.14, 25.4),
+    }
+}
+
+fn print_tables(r: &Report, o: &Options) {
+    println!(
+        "bench march3d: paper preset at {}, clock {:.3} GHz ({})",
+        o.size, r.clock_ghz, r.clock_source
+    );
+    println!(
+        "{:<11} {:<7} {:>7} {:>9} {:>8} {:>12} {:>10} {:>14}",
+        "scene", "impl", "threads", "s/frame", "GFLOP", "flops/cycle", "vs scalar", "target s"
+    );
+    for row in &r.rows {
+        let (one, two, _) = reference(&row.scene);
+        let target = if row.implementation == "scalar" {
+            "-".to_string()
+        } else if row.threads == 1 {
+            format!("<= {:.3}", one / 2.0)
+        } else {
+            format!("<= {:.3}", two / 2.0)
+        };
+        println!(
+            "{:<11} {:<7} {:>7} {:>9.3} {:>8.2} {:>12.3} {:>10} {:>14}",
+            row.scene,
+            row.implementation,
+            row.threads,
+            row.s_per_frame,
+            row.gflop,
+            row.flops_per_cycle,
+            row.speedup_vs_scalar
+                .map_or("-".to_string(), |s| format!("{s:.1}x")),
+            target
+        );
+    }
+    println!();
+    println!(
+        "forest world at {}, GPU: {} (per-config GPU ms at the same size)",
+        r.world_size, r.adapter
+    );
+    println!(
+        "{:<20} {:>9} {:>10} {:>9} {:>6} {:>6}",
+        "config", "evals/px", "steps/px", "gpu ms", "nodes", "steps"
+    );
+    let all = r
+        .emitter
+        .iter()
+        .find(|e| e.config == "all")
+        .map(|e| e.sdf_evals_per_px);
+    for e in &r.emitter {
+        println!(
+            "{:<20} {:>9.1} {:>10.2} {:>9} {:>6} {:>6}",
+            e.config,
+            e.sdf_evals_per_px,
+            e.steps_per_px,
+            e.gpu_ms.map_or("-".to_string(), |m| format!("{m:.2}")),
+            e.nodes,
+            e.max_steps
+        );
+    }
+    if let (Some(all), Some(naive)) = (all, r.emitter.iter().find(|e| e.config == "naive")) {
+        println!(
+            "naive / all SDF evaluations per pixel: {:.1}x",
+            naive.sdf_evals_per_px / all.max(1e-9)
+        );
+    }
+    if let Some(d) = &r.naive_vs_all {
+        println!(
+            "all vs naive image: {:.2}% of pixels differ by more than {} levels, mean error {:.2}, FLIP {:.4}",
+            d.differing_fraction * 100.0,
+            d.pixel_tolerance,
+            d.mean,
+            d.flip
+        );
+    }
+}
