@@ -272,9 +272,10 @@ fn march(o: vec3<f32>, dir: vec3<f32>) -> RayHit {
     for (var k = 0u; k < em_max_steps; k++) {
         let p = o + t * dir;
         let s = march_sample(p);
-        if (omega > 1.0 && k > 0u && s.d + d_prev < omega * d_prev) {
-            // The spheres of the two points do not overlap: the long step may have
-            // skipped a surface. Back to the previous point, plain steps from now on.
+        // The spheres of radius |d| around the two points do not overlap (the CPU tracer's
+        // test: the radii are the unscaled distances, the gap the scaled step taken): the
+        // long step may have skipped a surface. Back to the previous point, plain steps.
+        if (omega > 1.0 && k > 0u && abs(s.d) + d_prev < omega * d_prev * em_step_factor) {
             omega = 1.0;
             t = t_prev + d_prev * em_step_factor;
             continue;

@@ -1,12 +1,15 @@
 //! The 3D WGSL emitter: every plan's module parses and validates with naga, bad plans are
-//! errors, the baked literals are exact, and snapshots of the paper scenes' modules.
+//! errors, the baked literals are exact, and snapshots of the builtin scenes' modules.
 
 mod march3d_plans;
 
 use std::path::{Path, PathBuf};
 
 use craterfield::emit::codegen3d::{Codegen3dError, march_wgsl};
+use craterfield::emit::world3d::{EmitOptions, Optimization, emit};
+use craterfield::march3d::Plan;
 use craterfield::march3d::plan::{Lift, Shape};
+use craterfield::march3d::scene::{BUILTIN, Lighting, Scene};
 use march3d_plans::{WorldSwitches, all_plans, scene0, world};
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 
@@ -195,9 +198,41 @@ fn check_snapshot(name: &str, text: &str) {
     }
 }
 
+/// The plan of a builtin scene for its own camera: the paper preset for the paper scenes,
+/// every optimization for the worlds (or none, with `naive`).
+fn builtin_plan(name: &str, naive: bool) -> Plan {
+    let scene = Scene::builtin(name).unwrap();
+    let camera = scene.camera.camera().unwrap();
+    let opts = match (&scene.lighting, naive) {
+        (Lighting::Paper(_), _) => EmitOptions::paper(),
+        (Lighting::World(_), false) => EmitOptions::default(),
+        (Lighting::World(_), true) => EmitOptions::naive(),
+    };
+    emit(&scene, &camera, &opts).unwrap()
+}
+
 #[test]
-fn snapshots_of_the_paper_scenes_match() {
-    for (name, plan, _) in all_plans().into_iter().take(2) {
-        check_snapshot(&name, &march_wgsl(&plan).unwrap());
+fn every_builtin_scene_validates_with_every_optimization_switched_off_in_turn() {
+    for name in BUILTIN {
+        for naive in [false, true] {
+            let plan = builtin_plan(name, naive);
+            validate(name, &march_wgsl(&plan).unwrap());
+        }
+        let scene = Scene::builtin(name).unwrap();
+        let camera = scene.camera.camera().unwrap();
+        for o in Optimization::ALL {
+            let plan = emit(&scene, &camera, &EmitOptions::default().without(o)).unwrap();
+            validate(
+                &format!("{name} no-{}", o.name()),
+                &march_wgsl(&plan).unwrap(),
+            );
+        }
+    }
+}
+
+#[test]
+fn snapshots_of_the_builtin_scenes_match() {
+    for name in BUILTIN {
+        check_snapshot(name, &march_wgsl(&builtin_plan(name, false)).unwrap());
     }
 }

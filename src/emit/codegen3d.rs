@@ -15,8 +15,8 @@ use thiserror::Error;
 
 use super::wgsl::{NONFINITE_HELPER, f32_expr, f32_literal, u32_literal};
 use crate::march3d::plan::{
-    AoMode, Guard, Hash, Lift, Node, Plan, Prim, PrimKind, SKY, Shading, ShadowMode, Shape,
-    TerrainPlan,
+    AoMode, EARLY_OUT_MARGIN, Guard, Hash, Lift, Node, Plan, Prim, PrimKind, SKY, Shading,
+    ShadowMode, Shape, TerrainPlan,
 };
 
 /// The hand-written half of the module.
@@ -29,8 +29,9 @@ pub const MAX_OCTAVES: u32 = 12;
 #[derive(Clone, Debug, PartialEq, Error)]
 #[non_exhaustive]
 pub enum Codegen3dError {
-    /// A value that must be finite is not (only `far` and `escape` may be `+inf`).
-    #[error("plan value {what} is {value}, not finite")]
+    /// A value that must be finite is not (only `far`, `escape` and bound radii may be
+    /// `+inf`; a negative bound radius is reported here too).
+    #[error("plan value {what} is {value}, not a finite (or allowed infinite) value")]
     NonFinite {
         /// Which value.
         what: String,
@@ -86,8 +87,8 @@ pub fn march_wgsl(plan: &Plan) -> Result<String, Codegen3dError> {
     Ok(out)
 }
 
-/// Checks what the WGSL needs of `plan`: finite numbers (`far` and `escape` may be `+inf`),
-/// material indices in range, octave and row counts in range.
+/// Checks what the WGSL needs of `plan`: finite numbers (`far`, `escape` and bound radii
+/// may be `+inf`), material indices in range, octave and row counts in range.
 pub fn check_plan(plan: &Plan) -> Result<(), Codegen3dError> {
     let m = &plan.march;
     for (what, v) in [
@@ -221,7 +222,14 @@ fn check_node(i: usize, node: &Node, count: usize) -> Result<(), Codegen3dError>
         finite(&format!("{what}.guard.margin"), g.margin)?;
     }
     finite_vec(&format!("{what}.bound.centre"), node.bound.centre)?;
-    finite(&format!("{what}.bound.radius"), node.bound.radius)?;
+    // An unbounded node (a plane) has an infinite bound radius.
+    let radius = node.bound.radius;
+    if radius.is_nan() || radius < 0.0 {
+        return Err(Codegen3dError::NonFinite {
+            what: format!("{what}.bound.radius"),
+            value: radius,
+        });
+    }
     match &node.shape {
         Shape::Prim(p) => check_prim(&what, p),
         Shape::Blend { k, parts } => {
@@ -665,8 +673,9 @@ fn map_fns(plan: &Plan) -> String {
         if let Some(top) = plan.early_out {
             let _ = writeln!(
                 out,
-                "    if (p.y > {top}) {{\n        let e = p.y - {top};\n        if (e < d) {{\n            d = e;\n            m = SKY;\n        }}\n        return {result};\n    }}",
-                top = lit(top)
+                "    if (p.y > {above}) {{\n        let e = p.y - {top};\n        if (e < d) {{\n            d = e;\n            m = SKY;\n        }}\n        return {result};\n    }}",
+                top = lit(top),
+                above = lit(top + EARLY_OUT_MARGIN)
             );
         }
         for (i, node) in plan.nodes.iter().enumerate() {
