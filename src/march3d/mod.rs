@@ -1,13 +1,18 @@
 //! The 3D SDF world renderer: scenes, their emitted form, and a SIMD CPU sphere tracer; the
 //! GPU raymarcher runs the same emitted form as WGSL.
 //!
-//! * [`plan`]: the emitted world for one camera, the contract both renderers execute.
+//! * [`scene`]: RON scene files, their validation, the builtin scenes.
+//! * [`plan`]: the emitted world for one camera, the contract both renderers execute
+//!   (built by `emit::world3d`).
+//! * [`noise`]: lattice hashes, value noise and FBM with analytic gradients.
+//! * [`cpu`]: the SIMD sphere tracer and its counting mode.
+//! * `gpu` (feature `gpu`): the raymarcher running the plan's emitted WGSL.
 //! * [`simd`]: lane primitives per instruction set (AVX2+FMA, NEON, scalar, counting).
 //! * [`math`]: polynomial `exp`, `log`, `sin`, `cos` over those lanes.
 
+pub mod cpu;
 #[cfg(feature = "gpu")]
 pub mod gpu;
-pub mod cpu;
 pub mod math;
 pub mod noise;
 pub mod plan;

@@ -49,7 +49,7 @@
 //! the lift), which the emitter uses for culling, LOD and shadows.
 //!
 //! # Noise
-//! `fract(x) = x - floor(x)`. Lattice hashes of integer points `q` ([`Hash`]):
+//! `fract(x) = x - floor(x)`. Lattice hashes of integer points `q` ([`enum@Hash`]):
 //! * 2D, `DotFract`: `p3 = fract((q.x, q.y, q.x) * 0.1031); p3 += dot(p3, p3.yzx + 33.33);
 //!   fract((p3.x + p3.y) * p3.z)`. 3D: `p3 = fract(q * 0.1031); p3 += dot(p3, p3.zyx +
 //!   31.32); fract((p3.x + p3.y) * p3.z)`.
