@@ -7,7 +7,7 @@ use crate::emit::ShaderCache;
 use crate::emit::codegen3d::march_wgsl;
 use crate::march3d::plan::{Camera, Plan};
 use crate::render2d::gpu::GpuError;
-use crate::render2d::gpu::readback::map_read;
+use crate::render2d::gpu::readback::{Offscreen, READBACK_FORMAT};
 use crate::render2d::gpu::timing::Timestamps;
 
 use super::MarchGpuError;
@@ -21,78 +21,7 @@ const WORKGROUP: u32 = 8;
 
 /// The only target format: `rgba8unorm` rounds to nearest when storing, which is the CPU
 /// tracer's `floor(clamp(c, 0, 1) * 255 + 0.5)`.
-pub const TARGET_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-
-/// An offscreen storage texture and the buffer its pixels are copied into.
-struct Readback {
-    texture: wgpu::Texture,
-    view: wgpu::TextureView,
-    buffer: wgpu::Buffer,
-    width: u32,
-    height: u32,
-    padded_row: u32,
-}
-
-impl Readback {
-    fn new(device: &wgpu::Device, width: u32, height: u32) -> Readback {
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("craterfield march3d target"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: TARGET_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let padded_row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("craterfield march3d readback"),
-            size: u64::from(padded_row) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        Readback {
-            texture,
-            view,
-            buffer,
-            width,
-            height,
-            padded_row,
-        }
-    }
-
-    fn encode_copy(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(self.padded_row),
-                    rows_per_image: Some(self.height),
-                },
-            },
-            self.texture.size(),
-        );
-    }
-
-    /// The pixels, row by row without padding (after the copy was submitted).
-    fn read(&self, device: &wgpu::Device) -> Result<Vec<u8>, MarchGpuError> {
-        let (width, row) = (self.width as usize * 4, self.padded_row as usize);
-        Ok(map_read(device, &self.buffer, |data| {
-            data.chunks(row)
-                .flat_map(|line| &line[..width])
-                .copied()
-                .collect()
-        })?)
-    }
-}
+pub const TARGET_FORMAT: wgpu::TextureFormat = READBACK_FORMAT;
 
 /// The GPU raymarcher on the caller's device. See the [module docs](super).
 pub struct Marcher {
@@ -102,7 +31,7 @@ pub struct Marcher {
     pipeline_layout: wgpu::PipelineLayout,
     frame: wgpu::Buffer,
     pipelines: ShaderCache<wgpu::ComputePipeline>,
-    readback: Option<Readback>,
+    readback: Option<Offscreen>,
     timestamps: Option<Timestamps>,
 }
 
@@ -232,9 +161,9 @@ impl Marcher {
         if self
             .readback
             .as_ref()
-            .is_none_or(|r| (r.width, r.height) != (width, height))
+            .is_none_or(|r| r.size() != (width, height))
         {
-            self.readback = Some(Readback::new(&self.device, width, height));
+            self.readback = Some(Offscreen::storage(&self.device, width, height)?);
         }
         let Some(target) = self.readback.as_ref() else {
             unreachable!("the readback target was just made");
@@ -245,12 +174,12 @@ impl Marcher {
                 label: Some("craterfield march3d"),
             });
         let timed = self.timestamps.is_some();
-        self.encode_pass(&mut encoder, plan.key, &target.view, width, height, timed);
+        self.encode_pass(&mut encoder, plan.key, target.view(), width, height, timed);
         if let Some(ts) = &self.timestamps {
             ts.encode_resolve(&mut encoder);
             target.encode_copy(&mut encoder);
             self.queue.submit([encoder.finish()]);
-            let pixels = target.read(&self.device)?;
+            let pixels = target.read(&self.device)?.into_raw();
             let ms = ts.read_ms(&self.device)?.first().copied().unwrap_or(0.0);
             return Ok((pixels, ms));
         }
@@ -268,7 +197,7 @@ impl Marcher {
             });
         target.encode_copy(&mut copy);
         self.queue.submit([copy.finish()]);
-        Ok((target.read(&self.device)?, ms))
+        Ok((target.read(&self.device)?.into_raw(), ms))
     }
 
     /// Checks the size and camera, compiles (or finds) the plan's pipeline and writes the

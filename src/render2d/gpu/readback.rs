@@ -30,8 +30,32 @@ pub struct Offscreen {
 }
 
 impl Offscreen {
-    /// A target of `width x height` pixels on `device`.
+    /// A render target of `width x height` pixels on `device`.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Result<Offscreen, GpuError> {
+        Offscreen::with_usage(
+            device,
+            width,
+            height,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
+    }
+
+    /// A target a compute pass writes as a storage texture.
+    pub fn storage(device: &wgpu::Device, width: u32, height: u32) -> Result<Offscreen, GpuError> {
+        Offscreen::with_usage(device, width, height, wgpu::TextureUsages::STORAGE_BINDING)
+    }
+
+    /// The size in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    fn with_usage(
+        device: &wgpu::Device,
+        width: u32,
+        height: u32,
+        usage: wgpu::TextureUsages,
+    ) -> Result<Offscreen, GpuError> {
         let limit = device.limits().max_texture_dimension_2d;
         if width == 0 || height == 0 || width > limit || height > limit {
             return Err(GpuError::LimitsTooLow {
@@ -51,7 +75,7 @@ impl Offscreen {
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: READBACK_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            usage: usage | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
