@@ -48,7 +48,7 @@ struct Method {
     upsample: Upsample,
 }
 
-const METHODS: [Method; 4] = [
+const METHODS: [Method; 5] = [
     Method {
         name: "bilinear",
         reconstruction: Reconstruction::Off,
@@ -67,6 +67,11 @@ const METHODS: [Method; 4] = [
     Method {
         name: "planes",
         reconstruction: Reconstruction::Planes,
+        upsample: Upsample::BSpline,
+    },
+    Method {
+        name: "refine",
+        reconstruction: Reconstruction::Refine,
         upsample: Upsample::BSpline,
     },
 ];

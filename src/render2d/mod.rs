@@ -18,4 +18,6 @@ pub use camera::Camera;
 pub use exact::{ExactRenderOptions, render_exact};
 pub use lattice::{Lattice, LatticeError};
 pub use options::{Reconstruction, RenderOptions, Scale, ShadeOptions, Upsample};
-pub use twin::{FieldImage, LowRes, Texel, TwinError, field_image, render_twin};
+pub use twin::{
+    FieldImage, LowRes, RefineStats, Texel, TwinError, field_image, render_refine, render_twin,
+};

@@ -62,14 +62,22 @@ pub enum Reconstruction {
     /// solids and thin gaps at their true width. The default.
     #[default]
     Planes,
+    /// Proven exact: the `planes` texels, and a proof per 4x4 pixel block from the field's
+    /// Lipschitz bound and each texel's material margin that no surface crosses the block
+    /// and no other material wins in it; blocks without such a proof are evaluated exactly
+    /// at every pixel. Inside/outside and materials are the exact render's at every pixel
+    /// (see `docs/render2d-pipeline.md`, "Refine"). Needs the field in pass 3, so only the
+    /// renderers that hold the terrain draw it.
+    Refine,
 }
 
 impl Reconstruction {
     /// Every mode.
-    pub const ALL: [Reconstruction; 3] = [
+    pub const ALL: [Reconstruction; 4] = [
         Reconstruction::Off,
         Reconstruction::Divergence,
         Reconstruction::Planes,
+        Reconstruction::Refine,
     ];
 
     /// The mode's name as the CLI and the benchmarks print it.
@@ -78,7 +86,18 @@ impl Reconstruction {
             Reconstruction::Off => "off",
             Reconstruction::Divergence => "divergence",
             Reconstruction::Planes => "planes",
+            Reconstruction::Refine => "refine",
         }
+    }
+
+    /// The mode called `name` (as [`Reconstruction::name`] prints it).
+    pub fn from_name(name: &str) -> Option<Reconstruction> {
+        Reconstruction::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Whether pass 3 reads the `planes` pair values (modes `planes` and `refine`).
+    pub fn uses_planes(self) -> bool {
+        matches!(self, Reconstruction::Planes | Reconstruction::Refine)
     }
 }
 

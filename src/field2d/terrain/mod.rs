@@ -70,6 +70,7 @@
 
 mod batch;
 pub(crate) mod journal;
+mod materials;
 mod plan;
 
 use std::collections::BTreeSet;

@@ -596,7 +596,7 @@ impl TerrainRenderer {
         let second = match self.options.reconstruction {
             Reconstruction::Off => None,
             Reconstruction::Divergence => Some((&self.divergence, &lowres.padded)),
-            Reconstruction::Planes => Some((&self.pairs, &lowres.pairs)),
+            Reconstruction::Planes | Reconstruction::Refine => Some((&self.pairs, &lowres.pairs)),
         };
         if let Some((pipeline, target)) = second {
             lowres_pass(

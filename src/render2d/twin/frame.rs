@@ -7,6 +7,7 @@ use image::{Rgba, RgbaImage};
 use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights};
 use super::paint::{PaintScratch, Painter};
 use super::reconstruct::reconstruct;
+use super::refine::{RefineStats, add_margins, field_refined, render_refined};
 use super::sdf::sdf_pass;
 use super::shade::{Shader, check_shade};
 use super::threads::run_units;
@@ -15,7 +16,7 @@ use super::{FieldImage, LowRes, TwinError};
 use crate::field2d::{Sdf, Terrain};
 use crate::render2d::camera::Camera;
 use crate::render2d::lattice::Lattice;
-use crate::render2d::options::RenderOptions;
+use crate::render2d::options::{Reconstruction, RenderOptions};
 
 /// Renders `terrain` through `camera` with the reduced-scale pipeline on the CPU, colouring
 /// material `i` with `palette[i]` (magenta where the palette has no entry), on `threads`
@@ -27,9 +28,48 @@ pub fn render_twin<F: Sdf + Sync>(
     options: &RenderOptions,
     threads: usize,
 ) -> Result<RgbaImage, TwinError> {
+    if options.reconstruction == Reconstruction::Refine {
+        return render_refine(terrain, palette, camera, options, threads).map(|(image, _)| image);
+    }
     check_shade(&options.shade)?;
     let lowres = low_res(terrain, camera, options, threads)?;
     render_lowres(&lowres, palette, camera, options, threads)
+}
+
+/// [`render_twin`] in mode `refine` (whatever `options.reconstruction` says), with what the
+/// refinement did: blocks proven and refined, exact evaluations.
+pub fn render_refine<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    options: &RenderOptions,
+    threads: usize,
+) -> Result<(RgbaImage, RefineStats), TwinError> {
+    let options = &refine_options(options);
+    check_shade(&options.shade)?;
+    let mut lowres = low_res(terrain, camera, options, threads)?;
+    let margin_evals = add_margins(terrain, &mut lowres, threads)?;
+    let tex = Textures::new(&lowres, options)?;
+    let layout = Layout::new(camera, &tex);
+    render_refined(
+        terrain,
+        &lowres,
+        &tex,
+        &layout,
+        palette,
+        camera,
+        &options.shade,
+        margin_evals,
+        threads,
+    )
+}
+
+/// `options` with the reconstruction set to `refine`.
+fn refine_options(options: &RenderOptions) -> RenderOptions {
+    RenderOptions {
+        reconstruction: Reconstruction::Refine,
+        ..options.clone()
+    }
 }
 
 /// Passes 1 to 3 without shading: each pixel's reconstructed distance, normal and material.
@@ -39,6 +79,22 @@ pub fn field_image<F: Sdf + Sync>(
     options: &RenderOptions,
     threads: usize,
 ) -> Result<FieldImage, TwinError> {
+    if options.reconstruction == Reconstruction::Refine {
+        check_shade(&options.shade)?;
+        let mut lowres = low_res(terrain, camera, options, threads)?;
+        add_margins(terrain, &mut lowres, threads)?;
+        let tex = Textures::new(&lowres, options)?;
+        let layout = Layout::new(camera, &tex);
+        return field_refined(
+            terrain,
+            &lowres,
+            &tex,
+            &layout,
+            camera,
+            &options.shade,
+            threads,
+        );
+    }
     let lowres = low_res(terrain, camera, options, threads)?;
     field_image_lowres(&lowres, camera, options, threads)
 }
@@ -195,6 +251,9 @@ fn pass3_inputs<'a>(
     options: &RenderOptions,
 ) -> Result<Textures<'a>, TwinError> {
     check_shade(&options.shade)?;
+    if options.reconstruction == Reconstruction::Refine {
+        return Err(TwinError::NeedsField);
+    }
     let expected = Lattice::new(camera, options.scale)?;
     if lowres.lattice != expected {
         return Err(TwinError::LatticeMismatch {
@@ -206,7 +265,7 @@ fn pass3_inputs<'a>(
 }
 
 /// Splits `buf` (rows of `row_len` entries) into the bands of `runs`, in order.
-fn split_rows<'r, 'b, T>(
+pub(super) fn split_rows<'r, 'b, T>(
     runs: &'r [Run],
     mut buf: &'b mut [T],
     row_len: usize,

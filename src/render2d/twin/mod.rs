@@ -23,6 +23,7 @@ mod f16;
 mod frame;
 mod paint;
 mod reconstruct;
+mod refine;
 mod sdf;
 mod shade;
 mod threads;
@@ -36,9 +37,11 @@ use crate::field2d::tape::EvalError;
 
 pub use f16::{F16_MAX, f16_bits, f16_to_f32, round_f16};
 pub use frame::{
-    field_image, field_image_lowres, render_lowres, render_lowres_per_pixel, render_twin,
+    field_image, field_image_lowres, render_lowres, render_lowres_per_pixel, render_refine,
+    render_twin,
 };
 pub use reconstruct::reconstruct;
+pub use refine::{BLOCK as REFINE_BLOCK, RefineStats};
 pub use sdf::sdf_pass;
 pub use shade::{MISSING_MATERIAL, ShadeError, Shader, check_shade, shade};
 
@@ -64,6 +67,9 @@ pub struct LowRes {
     /// Pair values of the `planes` reconstruction, one `[right, down, diag, anti]` per
     /// texel; `None` in the other modes.
     pub pairs: Option<Vec<[f32; 4]>>,
+    /// Material margins of the `refine` mode, one per texel (see
+    /// [`crate::field2d::Terrain::material_margin`]); `None` in the other modes.
+    pub margins: Option<Vec<f32>>,
     /// How fast the field may change per world unit (see [`slope_bound`]): the `planes`
     /// interpolant is clamped to `d_k +- slope |p - C_k|` of every quad texel.
     pub slope: f32,
@@ -135,6 +141,10 @@ pub enum TwinError {
     /// Pass 3 in mode `planes` was given a [`LowRes`] without pair values.
     #[error("the planes reconstruction needs pair values: run `reconstruct` in mode planes")]
     MissingPairs,
+    /// Mode `refine` evaluates the field in pass 3: it is drawn from the terrain
+    /// ([`render_twin`], [`field_image`]), not from reduced-scale textures alone.
+    #[error("the refine reconstruction evaluates the field in pass 3: render it from the terrain")]
+    NeedsField,
     /// A [`LowRes`] was computed for another camera or scale than pass 3 is drawing.
     #[error("low-res lattice {found:?} is not the camera's lattice {expected:?}")]
     LatticeMismatch {

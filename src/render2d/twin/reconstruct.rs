@@ -21,7 +21,7 @@ pub fn reconstruct(lowres: &mut LowRes, mode: Reconstruction) -> Result<(), Twin
             lowres.texels = divergence(&lowres.lattice, &lowres.texels);
             lowres.pairs = None;
         }
-        Reconstruction::Planes => {
+        Reconstruction::Planes | Reconstruction::Refine => {
             lowres.pairs = Some(pair_values(&lowres.lattice, &lowres.texels));
         }
     }
@@ -175,6 +175,7 @@ mod tests {
                 texel(1.0, 1.0, 0.0),
             ],
             pairs: None,
+            margins: None,
             slope: 1.5,
         };
         reconstruct(&mut low, Reconstruction::Planes).unwrap();
@@ -204,6 +205,7 @@ mod tests {
             lattice: lattice(3, 2),
             texels: texels[..5].to_vec(),
             pairs: None,
+            margins: None,
             slope: 1.5,
         };
         assert!(matches!(

@@ -57,7 +57,12 @@ impl<'a> Textures<'a> {
     /// The textures of `lowres` for `options`; an error names a missing or short buffer.
     pub fn new(lowres: &'a LowRes, options: &RenderOptions) -> Result<Textures<'a>, TwinError> {
         check_texels(lowres)?;
-        let pairs: &[[f32; 4]] = match (options.reconstruction, &lowres.pairs) {
+        // Refine shades its proven blocks from the planes interpolant.
+        let mode = match options.reconstruction {
+            Reconstruction::Refine => Reconstruction::Planes,
+            mode => mode,
+        };
+        let pairs: &[[f32; 4]] = match (mode, &lowres.pairs) {
             (Reconstruction::Planes, None) => return Err(TwinError::MissingPairs),
             (Reconstruction::Planes, Some(p)) if p.len() != lowres.texels.len() => {
                 return Err(TwinError::BufferSize {
@@ -73,7 +78,7 @@ impl<'a> Textures<'a> {
             lattice: lowres.lattice,
             texels: &lowres.texels,
             pairs,
-            mode: options.reconstruction,
+            mode,
             filter: options.upsample,
             slope: lowres.slope,
         })

@@ -1,0 +1,699 @@
+//! Pass 3 in mode `refine`: every `BLOCK x BLOCK` pixel block of a quad is either proven
+//! from the quad's four texels or evaluated exactly at every pixel centre.
+//!
+//! For a block whose pixel centres span the rectangle `B`, with quad texels `k = 0..3`
+//! (centres `C_k`, distances `d_k`, materials `m_k`, margins `mu_k`), the terrain's proof
+//! slope `L'` ([`Terrain::proof_lipschitz`]) and cell border jump `J`
+//! ([`Terrain::cell_border_jump`]):
+//!
+//! * `R_k` is the largest distance from `C_k` to a corner of `B` (the farthest point of a
+//!   rectangle from any point is a corner), `n_k` the cell borders between `C_k` and `B`,
+//!   `e_k = |d_k| / 1024 + upp / 1000` covers the `f16` rounding of `d_k` and of the `f32`
+//!   evaluations; `reach_k = L' R_k + J n_k + e_k`.
+//! * Every pixel of `B` has its exact distance in `[lo, hi]`, `lo = max_k (d_k - reach_k)`,
+//!   `hi = min_k (d_k + reach_k)`.
+//! * **Sky** when `lo >= upp / 2`: no pixel is covered, every pixel is its row's sky colour.
+//! * **Solid** when `hi <= -(outline_px + 1/2) upp` and the material is proven, by either
+//!   rule: every grid cell `B` touches has one constant material ([`Terrain::cell_material`]),
+//!   and each pixel takes its cell's; or `B` and some `C_k` lie in one cell and
+//!   `2 L' R_k < mu_k` ([`Terrain::material_margin`]), and every pixel takes `m_k`. Each pixel
+//!   is then fully covered with no outline; its depth shade and normal come from the planes
+//!   interpolant, its distance clamped to `hi`.
+//! * Otherwise **uncertain**: every pixel is sampled with the terrain's batch evaluator and
+//!   shaded exactly as [`crate::render2d::render_exact`] shades it.
+//!
+//! Sky and uncertain pixels are the exact render's, bit for bit; solid pixels have its
+//! coverage and material, and differ from it only in the depth shade inside the terrain.
+
+use std::ops::Range;
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use glam::Vec2;
+use image::RgbaImage;
+use serde::Serialize;
+
+use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights};
+use super::shade::Shader;
+use super::threads::run_units;
+use super::upsample::{Textures, normal};
+use super::{FieldImage, LowRes, TwinError};
+use crate::field2d::grid::Grid;
+use crate::field2d::{MaterialId, Sample, Sdf, Terrain};
+use crate::render2d::camera::Camera;
+use crate::render2d::options::ShadeOptions;
+
+/// Side of the pixel blocks that are proven or refined, pixels.
+pub const BLOCK: usize = 4;
+
+/// Most pixels evaluated per batch call.
+const BATCH: usize = 4096;
+
+/// What the `refine` mode did for one frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct RefineStats {
+    /// Pixel blocks classified.
+    pub blocks: u64,
+    /// Blocks proven all sky.
+    pub sky_blocks: u64,
+    /// Blocks proven solid, with their materials.
+    pub solid_blocks: u64,
+    /// Blocks evaluated at every pixel.
+    pub refined_blocks: u64,
+    /// Pixels of the image.
+    pub pixels: u64,
+    /// Pixels evaluated exactly.
+    pub refined_pixels: u64,
+    /// Field evaluations of the frame: pass 1's texels, the material margins computed for
+    /// them, and the refined pixels.
+    pub exact_evaluations: u64,
+}
+
+impl RefineStats {
+    /// Refined blocks over all blocks (0 for an empty frame).
+    pub fn refined_block_fraction(&self) -> f64 {
+        ratio(self.refined_blocks, self.blocks)
+    }
+
+    /// Refined pixels over all pixels (0 for an empty frame).
+    pub fn refined_pixel_fraction(&self) -> f64 {
+        ratio(self.refined_pixels, self.pixels)
+    }
+}
+
+fn ratio(a: u64, b: u64) -> f64 {
+    if b == 0 { 0.0 } else { a as f64 / b as f64 }
+}
+
+/// The material proof of a solid block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Material {
+    /// One material for every pixel.
+    One(MaterialId),
+    /// Each pixel's grid cell has a constant material.
+    PerCell,
+}
+
+/// What a block is proven to be.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Class {
+    Sky { lo: f32 },
+    Solid { hi: f32, material: Material },
+    Uncertain,
+}
+
+/// Everything the proofs of one frame read.
+pub(super) struct Prover<'a, F: Sdf> {
+    terrain: &'a Terrain<F>,
+    grid: &'a Grid,
+    margins: &'a [f32],
+    cell_materials: Vec<OnceLock<Option<MaterialId>>>,
+    lip: f32,
+    jump: f32,
+    upp: f32,
+    sky_at: f32,
+    solid_at: f32,
+    origin: [f64; 2],
+    cell_size: f64,
+    dims: [i64; 2],
+}
+
+impl<'a, F: Sdf> Prover<'a, F> {
+    fn new(terrain: &'a Terrain<F>, margins: &'a [f32], upp: f32, shade: &ShadeOptions) -> Self {
+        let grid = terrain.grid();
+        let (nx, ny) = grid.dims();
+        Prover {
+            terrain,
+            grid,
+            margins,
+            cell_materials: (0..nx as usize * ny as usize)
+                .map(|_| OnceLock::new())
+                .collect(),
+            lip: terrain.proof_lipschitz(),
+            jump: terrain.cell_border_jump(),
+            upp,
+            sky_at: 0.5 * upp,
+            solid_at: -(shade.outline_px.max(0.0) + 0.5) * upp,
+            origin: [f64::from(grid.origin().x), f64::from(grid.origin().y)],
+            cell_size: f64::from(grid.cell_size()),
+            dims: [i64::from(nx), i64::from(ny)],
+        }
+    }
+
+    /// The constant material of cell `cell`, if it has one (computed once per frame).
+    fn cell_material(&self, cell: usize) -> Option<MaterialId> {
+        let slot = self.cell_materials.get(cell)?;
+        *slot.get_or_init(|| self.terrain.cell_material(cell))
+    }
+
+    /// Cell coordinate along axis `axis` of world coordinate `v` (not clamped to the grid).
+    fn cell_coord(&self, v: f32, axis: usize) -> i64 {
+        ((f64::from(v) - self.origin[axis]) / self.cell_size).floor() as i64
+    }
+
+    /// The cell range `B` touches along `axis`, padded by a rounding allowance so that the
+    /// `f32` cell lookup of any pixel of `B` lands inside it.
+    fn cell_span(&self, lo: f32, hi: f32, axis: usize) -> (i64, i64) {
+        let pad = 1.0e-2 + 1.0e-6 * lo.abs().max(hi.abs());
+        (
+            self.cell_coord(lo - pad, axis),
+            self.cell_coord(hi + pad, axis),
+        )
+    }
+
+    /// The proof of the block with pixel-centre rectangle `rect` (`[x0, y0, x1, y1]`) in
+    /// the quad of `texels` centred on `centers`.
+    fn classify(&self, quad: &Quad, rect: [f32; 4]) -> Class {
+        let [x0, y0, x1, y1] = rect;
+        let corners = [
+            Vec2::new(x0, y0),
+            Vec2::new(x1, y0),
+            Vec2::new(x0, y1),
+            Vec2::new(x1, y1),
+        ];
+        let span = [self.cell_span(x0, x1, 0), self.cell_span(y0, y1, 1)];
+        let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
+        let mut reach_only = [0.0f32; 4];
+        for k in 0..4 {
+            let c = quad.centers[k];
+            let r = corners.iter().map(|&p| p.distance(c)).fold(0.0, f32::max);
+            let borders = self.borders(c, span);
+            let d = quad.d[k];
+            let reach = self.lip * r * (1.0 + 1.0e-5)
+                + self.jump * borders as f32
+                + d.abs() / 1024.0
+                + self.upp / 1000.0;
+            reach_only[k] = r;
+            lo = lo.max(d - reach);
+            hi = hi.min(d + reach);
+        }
+        if lo >= self.sky_at {
+            return Class::Sky { lo };
+        }
+        if !(hi <= self.solid_at) {
+            return Class::Uncertain;
+        }
+        match self.material(quad, span, reach_only) {
+            Some(material) => Class::Solid { hi, material },
+            None => Class::Uncertain,
+        }
+    }
+
+    /// Cell borders between texel centre `c` and the block's cell span.
+    fn borders(&self, c: Vec2, span: [(i64, i64); 2]) -> i64 {
+        if self.jump == 0.0 {
+            return 0;
+        }
+        let axis = |v: f32, a: usize, (lo, hi): (i64, i64)| {
+            let (clo, chi) = self.cell_span(v, v, a);
+            hi.max(chi) - lo.min(clo)
+        };
+        axis(c.x, 0, span[0]) + axis(c.y, 1, span[1])
+    }
+
+    /// The material proof of a block spanning cells `span` (see the module doc).
+    fn material(&self, quad: &Quad, span: [(i64, i64); 2], reach: [f32; 4]) -> Option<Material> {
+        let [(ix0, ix1), (iy0, iy1)] = span;
+        let inside = ix0 >= 0 && iy0 >= 0 && ix1 < self.dims[0] && iy1 < self.dims[1];
+        if !inside {
+            return None;
+        }
+        let index = |ix: i64, iy: i64| (iy * self.dims[0] + ix) as usize;
+        let mut first = None;
+        let mut all_constant = true;
+        let mut all_same = true;
+        'cells: for iy in iy0..=iy1 {
+            for ix in ix0..=ix1 {
+                match (self.cell_material(index(ix, iy)), first) {
+                    (None, _) => {
+                        all_constant = false;
+                        break 'cells;
+                    }
+                    (Some(m), None) => first = Some(m),
+                    (Some(m), Some(f)) => all_same &= m == f,
+                }
+            }
+        }
+        if all_constant {
+            return Some(match first {
+                Some(m) if all_same => Material::One(m),
+                _ => Material::PerCell,
+            });
+        }
+        if ix0 != ix1 || iy0 != iy1 {
+            return None;
+        }
+        (0..4).find_map(|k| {
+            let c = quad.centers[k];
+            let same_cell = self.cell_span(c.x, c.x, 0) == (ix0, ix0)
+                && self.cell_span(c.y, c.y, 1) == (iy0, iy0)
+                && self.grid.cell_index(c) == Some(index(ix0, iy0));
+            let needed = 2.0 * self.lip * reach[k] * (1.0 + 1.0e-5) + self.upp / 1000.0;
+            (same_cell && needed < quad.margins[k]).then_some(Material::One(quad.materials[k]))
+        })
+    }
+
+    /// The material of pixel `p` of a block proven with `material` (`None`: the cell lookup
+    /// disagreed with the proof, so the pixel is evaluated instead).
+    fn pixel_material(&self, material: Material, p: Vec2) -> Option<MaterialId> {
+        match material {
+            Material::One(m) => Some(m),
+            Material::PerCell => self.cell_material(self.grid.cell_index(p)?),
+        }
+    }
+}
+
+/// The four texels of one quad as the proof reads them.
+struct Quad {
+    centers: [Vec2; 4],
+    d: [f32; 4],
+    materials: [MaterialId; 4],
+    margins: [f32; 4],
+}
+
+impl Quad {
+    fn new(tex: &Textures, margins: &[f32], c: u32, r: u32) -> Quad {
+        let texels = tex.quad(c, r);
+        let cols = tex.lattice.cols as usize;
+        let at = |dc: u32, dr: u32| (r + dr) as usize * cols + (c + dc) as usize;
+        let idx = [at(0, 0), at(1, 0), at(0, 1), at(1, 1)];
+        Quad {
+            centers: tex.quad_centers(c, r),
+            d: texels.map(|t| t.d),
+            materials: texels.map(|t| t.material),
+            margins: idx.map(|i| margins.get(i).copied().unwrap_or(0.0)),
+        }
+    }
+}
+
+/// Where the pixels of a refined frame go: an RGBA image or a field image.
+trait Sink {
+    /// Whether proven-sky pixels need their interpolated distance (field images do).
+    const SKY_VALUES: bool;
+    /// A proven pixel: its distance (world units), normal and material.
+    fn proven(&mut self, x: usize, yi: usize, d: f32, n: Vec2, material: MaterialId);
+    /// A pixel evaluated exactly.
+    fn exact(&mut self, x: usize, yi: usize, s: &Sample);
+}
+
+/// A thread's buffers.
+#[derive(Default)]
+struct RefineScratch {
+    blocks: Scratch,
+    classes: Vec<Class>,
+    points: Vec<Vec2>,
+    pixels: Vec<(usize, usize)>,
+    samples: Vec<Sample>,
+}
+
+/// Class counts, summed over threads.
+#[derive(Default)]
+struct Counters {
+    blocks: AtomicU64,
+    sky: AtomicU64,
+    solid: AtomicU64,
+    refined: AtomicU64,
+    refined_pixels: AtomicU64,
+}
+
+/// One frame's refine pass.
+struct Refiner<'a, F: Sdf> {
+    prover: Prover<'a, F>,
+    tex: &'a Textures<'a>,
+    layout: &'a Layout,
+    counters: Counters,
+}
+
+impl<F: Sdf + Sync> Refiner<'_, F> {
+    /// Classifies and draws the band of image rows `rows.pixels` (quad row `rows.cell`).
+    fn band<S: Sink>(
+        &self,
+        scratch: &mut RefineScratch,
+        rows: &Run,
+        sink: &mut S,
+    ) -> Result<(), TwinError> {
+        scratch.points.clear();
+        scratch.pixels.clear();
+        for columns in &self.layout.columns.runs {
+            let block = Block {
+                c: columns.cell,
+                r: rows.cell,
+                xs: columns.pixels.clone(),
+                ys: rows.pixels.clone(),
+            };
+            self.quad(scratch, block, sink);
+        }
+        self.evaluate(scratch, sink)
+    }
+
+    /// Classifies the blocks of one quad, draws the proven ones and queues the others.
+    fn quad<S: Sink>(&self, scratch: &mut RefineScratch, block: Block, sink: &mut S) {
+        let layout = self.layout;
+        let quad = Quad::new(self.tex, self.prover.margins, block.c, block.r);
+        let (xs, ys) = (block.xs.clone(), block.ys.clone());
+        let col_blocks: Vec<Range<usize>> = chunks(xs.clone()).collect();
+        scratch.classes.clear();
+        for by in chunks(ys.clone()) {
+            let (ya, yb) = (layout.rows.world[by.start], layout.rows.world[by.end - 1]);
+            for bx in &col_blocks {
+                let (x0, x1) = (
+                    layout.columns.world[bx.start],
+                    layout.columns.world[bx.end - 1],
+                );
+                let rect = [x0, ya.min(yb), x1, ya.max(yb)];
+                scratch.classes.push(self.prover.classify(&quad, rect));
+            }
+        }
+        self.count(&scratch.classes, &col_blocks, ys.len());
+        let interpolated = |c: &Class| match c {
+            Class::Sky { .. } => S::SKY_VALUES,
+            Class::Solid { .. } => true,
+            Class::Uncertain => false,
+        };
+        let kernel = Kernel::new(self.tex, block);
+        if scratch.classes.iter().any(interpolated) {
+            kernel.prepare(self.tex, layout, &mut scratch.blocks);
+        }
+        let per_row = col_blocks.len();
+        let classes = std::mem::take(&mut scratch.classes);
+        for (yi, y) in ys.clone().enumerate() {
+            let row = (yi / BLOCK) * per_row..(yi / BLOCK + 1) * per_row;
+            if classes[row.clone()].iter().any(interpolated) {
+                kernel.row(layout, y, &mut scratch.blocks);
+            }
+            for (bx, &class) in col_blocks.iter().zip(&classes[row]) {
+                for x in bx.clone() {
+                    let i = x - xs.start;
+                    let p = Vec2::new(layout.columns.world[x], layout.rows.world[y]);
+                    match class {
+                        Class::Sky { lo } if S::SKY_VALUES => {
+                            let d = scratch.blocks.dist[i].max(lo);
+                            let n = normal(&kernel.quad, pixel_weights(layout, x, y));
+                            sink.proven(x, yi, d, n, kernel.material(layout, x, y));
+                        }
+                        Class::Sky { .. } => {}
+                        Class::Solid { hi, material } => {
+                            match self.prover.pixel_material(material, p) {
+                                Some(m) => {
+                                    let d = scratch.blocks.dist[i].min(hi);
+                                    let n = normal(&kernel.quad, pixel_weights(layout, x, y));
+                                    sink.proven(x, yi, d, n, m);
+                                }
+                                None => queue(scratch, p, x, yi),
+                            }
+                        }
+                        Class::Uncertain => queue(scratch, p, x, yi),
+                    }
+                }
+            }
+        }
+        scratch.classes = classes;
+    }
+
+    fn count(&self, classes: &[Class], col_blocks: &[Range<usize>], rows: usize) {
+        let c = &self.counters;
+        let row_blocks: Vec<usize> = chunks(0..rows).map(|r| r.len()).collect();
+        let mut pixels = 0u64;
+        for (i, class) in classes.iter().enumerate() {
+            let (bx, by) = (i % col_blocks.len(), i / col_blocks.len());
+            let counter = match class {
+                Class::Sky { .. } => &c.sky,
+                Class::Solid { .. } => &c.solid,
+                Class::Uncertain => {
+                    pixels += (col_blocks[bx].len() * row_blocks[by]) as u64;
+                    &c.refined
+                }
+            };
+            counter.fetch_add(1, Ordering::Relaxed);
+        }
+        c.blocks.fetch_add(classes.len() as u64, Ordering::Relaxed);
+        c.refined_pixels.fetch_add(pixels, Ordering::Relaxed);
+    }
+
+    /// Samples the queued pixels exactly and hands them to the sink.
+    fn evaluate<S: Sink>(
+        &self,
+        scratch: &mut RefineScratch,
+        sink: &mut S,
+    ) -> Result<(), TwinError> {
+        let empty = Sample {
+            distance: 0.0,
+            gradient: Vec2::ZERO,
+            material: 0,
+        };
+        for (points, pixels) in scratch
+            .points
+            .chunks(BATCH)
+            .zip(scratch.pixels.chunks(BATCH))
+        {
+            scratch.samples.clear();
+            scratch.samples.resize(points.len(), empty);
+            self.prover.terrain.samples(points, &mut scratch.samples)?;
+            for (&(x, yi), s) in pixels.iter().zip(&scratch.samples) {
+                sink.exact(x, yi, s);
+            }
+        }
+        Ok(())
+    }
+
+    fn stats(&self, texels: u64, margins: u64, pixels: u64) -> RefineStats {
+        let c = &self.counters;
+        let get = |a: &AtomicU64| a.load(Ordering::Relaxed);
+        let refined_pixels = get(&c.refined_pixels);
+        RefineStats {
+            blocks: get(&c.blocks),
+            sky_blocks: get(&c.sky),
+            solid_blocks: get(&c.solid),
+            refined_blocks: get(&c.refined),
+            pixels,
+            refined_pixels,
+            exact_evaluations: texels + margins + refined_pixels,
+        }
+    }
+}
+
+fn queue(scratch: &mut RefineScratch, p: Vec2, x: usize, yi: usize) {
+    scratch.points.push(p);
+    scratch.pixels.push((x, yi));
+}
+
+/// `range` cut into runs of at most [`BLOCK`].
+fn chunks(range: Range<usize>) -> impl Iterator<Item = Range<usize>> {
+    range
+        .clone()
+        .step_by(BLOCK)
+        .map(move |s| s..(s + BLOCK).min(range.end))
+}
+
+/// Computes the material margin of every texel of `lowres` whose cell's material is not
+/// constant (the others are `+inf` without evaluation); returns how many were evaluated.
+pub(super) fn add_margins<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    lowres: &mut LowRes,
+    threads: usize,
+) -> Result<u64, TwinError> {
+    let lattice = lowres.lattice;
+    let cols = lattice.cols as usize;
+    let mut margins = vec![0.0f32; lowres.texels.len()];
+    let evaluated = AtomicU64::new(0);
+    let units: Vec<(usize, &mut [f32])> = margins
+        .chunks_mut(cols * 8)
+        .enumerate()
+        .map(|(i, chunk)| (i * cols * 8, chunk))
+        .collect();
+    run_units(
+        units,
+        threads,
+        || (),
+        |_, (first, out)| {
+            let mut n = 0;
+            for (i, m) in out.iter_mut().enumerate() {
+                let t = first + i;
+                let p = lattice.texel_center((t % cols) as u32, (t / cols) as u32);
+                *m = terrain.material_margin(p);
+                n += 1;
+            }
+            evaluated.fetch_add(n, Ordering::Relaxed);
+            Ok::<(), TwinError>(())
+        },
+    )?;
+    lowres.margins = Some(margins);
+    Ok(evaluated.load(Ordering::Relaxed))
+}
+
+/// The shaded image of a `refine` frame.
+struct ImageSink<'a> {
+    bytes: &'a mut [u8],
+    width: usize,
+    y0: usize,
+    shader: &'a Shader,
+    palette: &'a [[u8; 3]],
+    upp: f32,
+}
+
+impl ImageSink<'_> {
+    fn put(&mut self, x: usize, yi: usize, rgb: [u8; 3]) {
+        let i = (yi * self.width + x) * 4;
+        self.bytes[i..i + 4].copy_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
+    }
+
+    fn shade(&self, yi: usize, d: f32, n: Vec2, material: MaterialId) -> [u8; 3] {
+        let base = self.palette.get(usize::from(material)).copied();
+        let sky = self.shader.sky((self.y0 + yi) as u32);
+        self.shader.shade(d / self.upp, n, base, sky)
+    }
+}
+
+impl Sink for ImageSink<'_> {
+    const SKY_VALUES: bool = false;
+
+    fn proven(&mut self, x: usize, yi: usize, d: f32, n: Vec2, material: MaterialId) {
+        let rgb = self.shade(yi, d, n, material);
+        self.put(x, yi, rgb);
+    }
+
+    fn exact(&mut self, x: usize, yi: usize, s: &Sample) {
+        let d_px = s.distance / self.upp;
+        let n = if self.shader.needs_normal(d_px) {
+            s.gradient.normalize_or_zero()
+        } else {
+            Vec2::ZERO
+        };
+        let rgb = self.shade(yi, s.distance, n, s.material);
+        self.put(x, yi, rgb);
+    }
+}
+
+/// The per-pixel field of a `refine` frame.
+struct FieldSink<'a> {
+    d: &'a mut [f32],
+    n: &'a mut [Vec2],
+    m: &'a mut [MaterialId],
+    width: usize,
+    upp: f32,
+}
+
+impl Sink for FieldSink<'_> {
+    const SKY_VALUES: bool = true;
+
+    fn proven(&mut self, x: usize, yi: usize, d: f32, n: Vec2, material: MaterialId) {
+        let i = yi * self.width + x;
+        (self.d[i], self.n[i], self.m[i]) = (d / self.upp, n, material);
+    }
+
+    fn exact(&mut self, x: usize, yi: usize, s: &Sample) {
+        let i = yi * self.width + x;
+        self.d[i] = s.distance / self.upp;
+        self.n[i] = s.gradient.normalize_or_zero();
+        self.m[i] = s.material;
+    }
+}
+
+/// Pass 3 of mode `refine` into an RGBA image (see the module doc). `lowres` holds the
+/// planes pair values and the margins; `margin_evals` is how many margins pass 1 computed.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn render_refined<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    lowres: &LowRes,
+    tex: &Textures,
+    layout: &Layout,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    shade: &ShadeOptions,
+    margin_evals: u64,
+    threads: usize,
+) -> Result<(RgbaImage, RefineStats), TwinError> {
+    let margins = lowres.margins.as_deref().unwrap_or(&[]);
+    let refiner = Refiner {
+        prover: Prover::new(terrain, margins, camera.units_per_pixel, shade),
+        tex,
+        layout,
+        counters: Counters::default(),
+    };
+    let shader = Shader::new(shade, camera.height);
+    let width = camera.width as usize;
+    let mut image = RgbaImage::new(camera.width, camera.height);
+    let units = super::frame::split_rows(&layout.rows.runs, &mut image, width * 4);
+    run_units(
+        units,
+        threads,
+        RefineScratch::default,
+        |scratch, (rows, bytes)| {
+            fill_sky(&shader, bytes, width, rows.pixels.start);
+            let mut sink = ImageSink {
+                bytes,
+                width,
+                y0: rows.pixels.start,
+                shader: &shader,
+                palette,
+                upp: camera.units_per_pixel,
+            };
+            refiner.band(scratch, rows, &mut sink)
+        },
+    )?;
+    let pixels = u64::from(camera.width) * u64::from(camera.height);
+    let stats = refiner.stats(lowres.texels.len() as u64, margin_evals, pixels);
+    Ok((image, stats))
+}
+
+/// Pass 3 of mode `refine` into a field image (see [`render_refined`]).
+pub(super) fn field_refined<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    lowres: &LowRes,
+    tex: &Textures,
+    layout: &Layout,
+    camera: &Camera,
+    shade: &ShadeOptions,
+    threads: usize,
+) -> Result<FieldImage, TwinError> {
+    let margins = lowres.margins.as_deref().unwrap_or(&[]);
+    let refiner = Refiner {
+        prover: Prover::new(terrain, margins, camera.units_per_pixel, shade),
+        tex,
+        layout,
+        counters: Counters::default(),
+    };
+    let width = camera.width as usize;
+    let pixels = width * camera.height as usize;
+    let mut field = FieldImage {
+        width: camera.width,
+        height: camera.height,
+        distance_px: vec![0.0; pixels],
+        normal: vec![Vec2::ZERO; pixels],
+        material: vec![0; pixels],
+    };
+    let runs = &layout.rows.runs;
+    use super::frame::split_rows;
+    let units: Vec<_> = split_rows(runs, &mut field.distance_px, width)
+        .into_iter()
+        .zip(split_rows(runs, &mut field.normal, width))
+        .zip(split_rows(runs, &mut field.material, width))
+        .map(|(((rows, d), (_, n)), (_, m))| (rows, d, n, m))
+        .collect();
+    run_units(
+        units,
+        threads,
+        RefineScratch::default,
+        |scratch, (rows, d, n, m)| {
+            let mut sink = FieldSink {
+                d,
+                n,
+                m,
+                width,
+                upp: camera.units_per_pixel,
+            };
+            refiner.band(scratch, rows, &mut sink)
+        },
+    )?;
+    Ok(field)
+}
+
+/// Fills every row of a band with its sky colour.
+fn fill_sky(shader: &Shader, bytes: &mut [u8], width: usize, y0: usize) {
+    for (i, row) in bytes.chunks_exact_mut(width * 4).enumerate() {
+        let [r, g, b] = shader.sky_rgb((y0 + i) as u32);
+        for px in row.chunks_exact_mut(4) {
+            px.copy_from_slice(&[r, g, b, 255]);
+        }
+    }
+}
