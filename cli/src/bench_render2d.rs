@@ -11,8 +11,8 @@ use craterfield::field2d::{Graph, Level, Terrain};
 use craterfield::render2d::gpu::readback::Offscreen;
 use craterfield::render2d::gpu::timing::Timestamps;
 use craterfield::render2d::gpu::{GpuContext, GpuError, TerrainRenderer};
-use craterfield::render2d::twin::render_twin;
-use craterfield::render2d::{Camera, Reconstruction, RenderOptions, Scale, Upsample};
+use craterfield::render2d::twin::{render_direct, render_refine, render_twin};
+use craterfield::render2d::{Camera, Reconstruction, RefineStats, RenderOptions, Scale, Upsample};
 use glam::Vec2;
 use serde::Serialize;
 
@@ -53,6 +53,8 @@ struct Report {
     rows: Vec<Row>,
     cpu_twin_ms: f64,
     cpu_twin_threads: usize,
+    cpu_rows: Vec<CpuRow>,
+    refine: RefineStats,
 }
 
 const MODES: [(Reconstruction, Upsample, &str); 4] = [
@@ -183,22 +185,96 @@ fn gpu_rows(
     Ok(rows)
 }
 
-fn twin_ms(
-    terrain: &Terrain<Graph>,
-    palette: &[[u8; 3]],
-    camera: &Camera,
-    frames: u32,
-) -> Result<f64, String> {
-    let options = RenderOptions::default();
+/// Median, p95, p99 and max of frame times.
+#[derive(Serialize, Clone, Copy)]
+struct Times {
+    median: f64,
+    p95: f64,
+    p99: f64,
+    max: f64,
+}
+
+impl Times {
+    fn of(mut ms: Vec<f64>) -> Times {
+        ms.sort_by(f64::total_cmp);
+        let at = |q: f64| {
+            let i = ((ms.len() as f64 * q).ceil() as usize).clamp(1, ms.len().max(1)) - 1;
+            ms.get(i).copied().unwrap_or(f64::NAN)
+        };
+        Times {
+            median: median(ms.clone()),
+            p95: at(0.95),
+            p99: at(0.99),
+            max: ms.last().copied().unwrap_or(f64::NAN),
+        }
+    }
+}
+
+/// Times `frames` CPU frames of `render` after two warm-up frames.
+fn cpu_times(frames: u32, mut render: impl FnMut() -> Result<(), String>) -> Result<Times, String> {
     let mut ms = Vec::new();
     for i in 0..frames + 2 {
         let t = Instant::now();
-        render_twin(terrain, palette, camera, &options, 0).map_err(|e| e.to_string())?;
+        render()?;
         if i >= 2 {
             ms.push(t.elapsed().as_secs_f64() * 1e3);
         }
     }
-    Ok(median(ms))
+    Ok(Times::of(ms))
+}
+
+/// One CPU configuration's frame times.
+#[derive(Serialize)]
+struct CpuRow {
+    pipeline: &'static str,
+    scale: u32,
+    mode: &'static str,
+    times: Times,
+}
+
+/// The CPU rows: full-resolution direct evaluation, the twin at 1/16 in modes planes and
+/// refine; and what refine did.
+fn cpu_rows(
+    terrain: &Terrain<Graph>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    frames: u32,
+) -> Result<(Vec<CpuRow>, RefineStats), String> {
+    let err = |e: craterfield::render2d::TwinError| e.to_string();
+    let shade = RenderOptions::default().shade;
+    let direct = cpu_times(frames.min(4), || {
+        render_direct(terrain, palette, camera, &shade, 0).map(|_| ()).map_err(err)
+    })?;
+    let planes = RenderOptions {
+        reconstruction: Reconstruction::Planes,
+        ..RenderOptions::default()
+    };
+    let planes_t = cpu_times(frames, || {
+        render_twin(terrain, palette, camera, &planes, 0).map(|_| ()).map_err(err)
+    })?;
+    let refine = RenderOptions {
+        reconstruction: Reconstruction::Refine,
+        ..RenderOptions::default()
+    };
+    let mut stats = RefineStats::default();
+    let refine_t = cpu_times(frames, || {
+        stats = render_refine(terrain, palette, camera, &refine, 0).map_err(err)?.1;
+        Ok(())
+    })?;
+    let row = |pipeline, scale, mode, times| CpuRow {
+        pipeline,
+        scale,
+        mode,
+        times,
+    };
+    Ok((
+        vec![
+            row("full-res", 1, "direct", direct),
+            row("twin", 16, "planes", planes_t),
+            row("twin", 16, "refine", refine_t),
+        ],
+        stats,
+    ))
 }
 
 pub fn run(options: &Options) -> Result<ExitCode, String> {
@@ -212,7 +288,8 @@ pub fn run(options: &Options) -> Result<ExitCode, String> {
         height: options.height,
     };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let cpu_twin_ms = twin_ms(&terrain, &palette, &camera, options.frames)?;
+    let (cpu_rows, refine) = cpu_rows(&terrain, &palette, &camera, options.frames)?;
+    let cpu_twin_ms = cpu_rows[1].times.median;
     let (adapter, timing, rows) = match GpuContext::new() {
         Ok(ctx) => {
             let timing = if ctx.timestamps {
@@ -232,6 +309,8 @@ pub fn run(options: &Options) -> Result<ExitCode, String> {
         rows,
         cpu_twin_ms,
         cpu_twin_threads: threads,
+        cpu_rows,
+        refine,
     };
     if options.json {
         println!(
@@ -263,9 +342,34 @@ fn print_table(report: &Report, options: &Options) {
             r.ms
         );
     }
+    println!("CPU, {} threads:", report.cpu_twin_threads);
     println!(
-        "CPU twin (1/16, planes, {} threads): {:.2} ms/frame",
-        report.cpu_twin_threads, report.cpu_twin_ms
+        "{:<10} {:>5} {:<14} {:>10} {:>10} {:>10} {:>10}",
+        "pipeline", "scale", "mode", "median ms", "p95", "p99", "max"
+    );
+    for r in &report.cpu_rows {
+        let t = r.times;
+        println!(
+            "{:<10} {:>5} {:<14} {:>10.3} {:>10.3} {:>10.3} {:>10.3}",
+            r.pipeline,
+            format!("1/{}", r.scale),
+            r.mode,
+            t.median,
+            t.p95,
+            t.p99,
+            t.max
+        );
+    }
+    let s = &report.refine;
+    println!(
+        "refine (CPU twin): {} of {} blocks refined ({:.2}%), {} of {} pixels ({:.2}%), {} exact evaluations per frame",
+        s.refined_blocks,
+        s.blocks,
+        100.0 * s.refined_block_fraction(),
+        s.refined_pixels,
+        s.pixels,
+        100.0 * s.refined_pixel_fraction(),
+        s.exact_evaluations
     );
     let full = report
         .rows

@@ -15,6 +15,7 @@ mod frame;
 mod march3d_cmd;
 #[cfg(feature = "peers")]
 mod peers;
+mod render_cmd;
 mod render_frame;
 mod replay_cmd;
 mod rng;
@@ -70,6 +71,9 @@ enum Command {
     /// Compare two images (pixel statistics and the FLIP perceptual score): exit 0 when
     /// within the thresholds, 1 when over, 2 when they cannot be compared.
     Diff(diff_cmd::Options),
+    /// Render a level (after a seeded barrage, or at a replay's tick) in any mode, scale and
+    /// view, on the GPU or the CPU; `--compare-exact` measures it against the exact render.
+    Render(Box<render_cmd::Options>),
     /// Render a 3D SDF scene (builtin or RON file) with the CPU sphere tracer or the GPU
     /// raymarcher.
     March3d(march3d_cmd::Options),
@@ -209,6 +213,7 @@ fn main() -> ExitCode {
             command: LevelCommand::Check { file },
         } => level_check(&file),
         Command::Diff(options) => diff_cmd::run(&options),
+        Command::Render(options) => render_cmd::run(&options),
         Command::March3d(options) => march3d_cmd::run(&options),
         Command::Bench {
             command: BenchCommand::Field { json, points },

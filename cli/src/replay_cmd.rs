@@ -148,10 +148,38 @@ pub fn render(
     width: u32,
     level: Option<&Path>,
 ) -> Result<ExitCode, String> {
-    let (replay, _, _) = load(file)?;
     let level = load_level(level)?;
+    let (world, tick, ticks) = simulate_to(file, tick, &level)?;
+    let img = frame::render(&level, &world, width);
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    }
+    img.save(out)
+        .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+    let (vehicles, projectiles, debris) = frame::census(&world);
+    println!(
+        "{}: tick {tick} of {ticks}: {vehicles} vehicles, {projectiles} projectiles, {debris} debris, {} terrain events; wrote {} ({}x{})",
+        file.display(),
+        world.terrain().events().len(),
+        out.display(),
+        img.width(),
+        img.height()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The world of replay `file` (recorded on `level`) re-simulated to `tick` (default: the
+/// last), warning on stderr where it diverges from the recorded hashes.
+pub fn world_at(file: &Path, tick: Option<u32>, level: &Level) -> Result<World, String> {
+    simulate_to(file, tick, level).map(|(world, _, _)| world)
+}
+
+/// [`world_at`], with the tick reached and the replay's length.
+fn simulate_to(file: &Path, tick: Option<u32>, level: &Level) -> Result<(World, u32, u32), String> {
+    let (replay, _, _) = load(file)?;
     replay
-        .check_level(level_hash(&level))
+        .check_level(level_hash(level))
         .map_err(|e| format!("{}: {e}", file.display()))?;
     let ticks = replay.ticks();
     let tick = tick.unwrap_or(ticks);
@@ -161,7 +189,7 @@ pub fn render(
             file.display()
         ));
     }
-    let mut world = World::new(&level, replay.settings, usize::from(replay.players))
+    let mut world = World::new(level, replay.settings, usize::from(replay.players))
         .map_err(|e| format!("{}: {e}", file.display()))?;
     let mut diverged = None;
     for t in 0..tick {
@@ -182,21 +210,5 @@ pub fn render(
             "warning: the re-simulation diverged from the recording at tick {t} (expected {expected:#018x} found {found:#018x}); the picture shows this build's simulation"
         );
     }
-    let img = frame::render(&level, &world, width);
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    }
-    img.save(out)
-        .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
-    let (vehicles, projectiles, debris) = frame::census(&world);
-    println!(
-        "{}: tick {tick} of {ticks}: {vehicles} vehicles, {projectiles} projectiles, {debris} debris, {} terrain events; wrote {} ({}x{})",
-        file.display(),
-        world.terrain().events().len(),
-        out.display(),
-        img.width(),
-        img.height()
-    );
-    Ok(ExitCode::SUCCESS)
+    Ok((world, tick, ticks))
 }

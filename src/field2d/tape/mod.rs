@@ -23,6 +23,7 @@
 pub mod fuse;
 pub mod image;
 pub mod interval;
+pub mod lipschitz;
 pub mod lower;
 pub mod regalloc;
 pub mod specialize;

@@ -70,7 +70,8 @@
 
 mod batch;
 pub(crate) mod journal;
-mod materials;
+mod proof;
+pub use proof::{CellBounds, RectSign};
 mod plan;
 
 use std::collections::BTreeSet;

@@ -25,13 +25,19 @@ pub(crate) struct CellPlan {
     /// then gives that constant with a zero gradient (the material still comes from the
     /// tape), so the distance needs no evaluation.
     pub clamped: Option<f32>,
+    /// Bounds of `clamp(base, -M, M)` over the region (`[-M, M]` when nothing is known).
+    pub range: (f32, f32),
 }
 
 impl CellPlan {
     fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32) -> CellPlan {
+        let mut range = (-band, band);
         let (program, clamped) = match region {
             Some((min, max)) => {
                 let (p, bound) = program.specialize_with_bound(min, max);
+                if !bound.nan {
+                    range = (bound.lo.clamp(-band, band), bound.hi.clamp(-band, band));
+                }
                 // `nmin(nmax(d, -M), M)` is the constant `M` when `d >= M`, and `-M` when
                 // `d <= -M`, whatever the gradient of `d`.
                 let clamped = if bound.nan {
@@ -51,6 +57,7 @@ impl CellPlan {
             value: program.tape(Outputs::Value),
             material: program.tape(Outputs::ValueMaterial),
             clamped,
+            range,
         }
     }
 }

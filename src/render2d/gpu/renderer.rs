@@ -356,6 +356,13 @@ impl TerrainRenderer {
         palette: &[[u8; 3]],
         camera: &Camera,
     ) -> Result<PrepareStats, GpuError> {
+        if self.options.reconstruction == Reconstruction::Refine {
+            return Err(GpuError::Unsupported(
+                "draw the refine reconstruction yet: it is drawn by the CPU twin \
+                 (render2d::twin::render_refine)"
+                    .into(),
+            ));
+        }
         let lattice = Lattice::new(camera, self.options.scale)?;
         let mut stats = PrepareStats {
             upload: self.mirror.sync(&self.device, &self.queue, terrain)?,

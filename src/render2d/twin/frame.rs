@@ -7,7 +7,7 @@ use image::{Rgba, RgbaImage};
 use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights};
 use super::paint::{PaintScratch, Painter};
 use super::reconstruct::reconstruct;
-use super::refine::{RefineStats, add_margins, field_refined, render_refined};
+use super::refine::{RefineStats, field_refined, render_refined};
 use super::sdf::sdf_pass;
 use super::shade::{Shader, check_shade};
 use super::threads::run_units;
@@ -16,7 +16,7 @@ use super::{FieldImage, LowRes, TwinError};
 use crate::field2d::{Sdf, Terrain};
 use crate::render2d::camera::Camera;
 use crate::render2d::lattice::Lattice;
-use crate::render2d::options::{Reconstruction, RenderOptions};
+use crate::render2d::options::{Reconstruction, RenderOptions, Scale, ShadeOptions};
 
 /// Renders `terrain` through `camera` with the reduced-scale pipeline on the CPU, colouring
 /// material `i` with `palette[i]` (magenta where the palette has no entry), on `threads`
@@ -45,10 +45,20 @@ pub fn render_refine<F: Sdf + Sync>(
     options: &RenderOptions,
     threads: usize,
 ) -> Result<(RgbaImage, RefineStats), TwinError> {
+    refine_frame(terrain, palette, camera, options, threads, false)
+}
+
+fn refine_frame<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    options: &RenderOptions,
+    threads: usize,
+    tint: bool,
+) -> Result<(RgbaImage, RefineStats), TwinError> {
     let options = &refine_options(options);
     check_shade(&options.shade)?;
-    let mut lowres = low_res(terrain, camera, options, threads)?;
-    let margin_evals = add_margins(terrain, &mut lowres, threads)?;
+    let lowres = low_res(terrain, camera, options, threads)?;
     let tex = Textures::new(&lowres, options)?;
     let layout = Layout::new(camera, &tex);
     render_refined(
@@ -59,9 +69,77 @@ pub fn render_refine<F: Sdf + Sync>(
         palette,
         camera,
         &options.shade,
-        margin_evals,
         threads,
+        false,
+        tint,
     )
+}
+
+/// [`render_refine`] with every refined (exactly evaluated) pixel tinted red: where the
+/// proofs failed.
+pub fn render_refine_overlay<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    options: &RenderOptions,
+    threads: usize,
+) -> Result<(RgbaImage, RefineStats), TwinError> {
+    refine_frame(terrain, palette, camera, options, threads, true)
+}
+
+/// Full-resolution direct evaluation on the CPU: every pixel sampled with the terrain's
+/// batch evaluator and shaded as [`crate::render2d::render_exact`] shades it (the same
+/// image, faster). The reference `refine` is measured against.
+pub fn render_direct<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    shade: &ShadeOptions,
+    threads: usize,
+) -> Result<RgbaImage, TwinError> {
+    check_shade(shade)?;
+    let (lowres, options) = direct_inputs(camera, shade)?;
+    let tex = Textures::new(&lowres, &options)?;
+    let layout = Layout::new(camera, &tex);
+    let (image, _) = render_refined(
+        terrain, &lowres, &tex, &layout, palette, camera, shade, threads, true, false,
+    )?;
+    Ok(image)
+}
+
+/// The exact field at every pixel centre (distance in pixels, unit normal, material), from
+/// the terrain's batch evaluator: the ground truth [`field_image`] is measured against.
+pub fn exact_field<F: Sdf + Sync>(
+    terrain: &Terrain<F>,
+    camera: &Camera,
+    threads: usize,
+) -> Result<FieldImage, TwinError> {
+    let shade = ShadeOptions::default();
+    let (lowres, options) = direct_inputs(camera, &shade)?;
+    let tex = Textures::new(&lowres, &options)?;
+    let layout = Layout::new(camera, &tex);
+    field_refined(terrain, &lowres, &tex, &layout, camera, &shade, threads, true)
+}
+
+/// Empty textures on the coarsest lattice of `camera`: the direct renderers use only their
+/// pixel layout.
+fn direct_inputs(camera: &Camera, shade: &ShadeOptions) -> Result<(LowRes, RenderOptions), TwinError> {
+    let options = RenderOptions {
+        scale: Scale::ThirtySecond,
+        reconstruction: Reconstruction::Refine,
+        shade: shade.clone(),
+        ..RenderOptions::default()
+    };
+    let lattice = Lattice::new(camera, options.scale)?;
+    let texels = vec![super::Texel::default(); lattice.len()];
+    let lowres = LowRes {
+        pairs: Some(vec![[0.0; 4]; texels.len()]),
+        margins: None,
+        lattice,
+        texels,
+        slope: 1.0,
+    };
+    Ok((lowres, options))
 }
 
 /// `options` with the reconstruction set to `refine`.
@@ -81,8 +159,7 @@ pub fn field_image<F: Sdf + Sync>(
 ) -> Result<FieldImage, TwinError> {
     if options.reconstruction == Reconstruction::Refine {
         check_shade(&options.shade)?;
-        let mut lowres = low_res(terrain, camera, options, threads)?;
-        add_margins(terrain, &mut lowres, threads)?;
+        let lowres = low_res(terrain, camera, options, threads)?;
         let tex = Textures::new(&lowres, options)?;
         let layout = Layout::new(camera, &tex);
         return field_refined(
@@ -93,6 +170,7 @@ pub fn field_image<F: Sdf + Sync>(
             camera,
             &options.shade,
             threads,
+            false,
         );
     }
     let lowres = low_res(terrain, camera, options, threads)?;

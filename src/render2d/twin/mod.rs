@@ -37,7 +37,8 @@ use crate::field2d::tape::EvalError;
 
 pub use f16::{F16_MAX, f16_bits, f16_to_f32, round_f16};
 pub use frame::{
-    field_image, field_image_lowres, render_lowres, render_lowres_per_pixel, render_refine,
+    exact_field, field_image, field_image_lowres, render_direct, render_lowres, render_lowres_per_pixel,
+    render_refine, render_refine_overlay,
     render_twin,
 };
 pub use reconstruct::reconstruct;

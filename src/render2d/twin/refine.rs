@@ -39,8 +39,10 @@ use super::threads::run_units;
 use super::upsample::{Textures, normal};
 use super::{FieldImage, LowRes, TwinError};
 use crate::field2d::grid::Grid;
+use crate::field2d::terrain::RectSign;
 use crate::field2d::{MaterialId, Sample, Sdf, Terrain};
 use crate::render2d::camera::Camera;
+use crate::render2d::lattice::Lattice;
 use crate::render2d::options::ShadeOptions;
 
 /// Side of the pixel blocks that are proven or refined, pixels.
@@ -102,48 +104,112 @@ enum Class {
     Uncertain,
 }
 
+/// What the proofs read about one grid cell.
+#[derive(Clone, Copy, Debug)]
+struct CellInfo {
+    material: Option<MaterialId>,
+    lipschitz: f32,
+    error: f32,
+}
+
+/// The slope and border-jump allowance of one quad: the largest over the cells its texel
+/// square touches.
+#[derive(Clone, Copy, Debug)]
+struct QuadBounds {
+    lipschitz: f32,
+    jump: f32,
+}
+
 /// Everything the proofs of one frame read.
 pub(super) struct Prover<'a, F: Sdf> {
     terrain: &'a Terrain<F>,
     grid: &'a Grid,
+    /// Margins computed in pass 1, if any; else computed here on first use.
     margins: &'a [f32],
-    cell_materials: Vec<OnceLock<Option<MaterialId>>>,
-    lip: f32,
-    jump: f32,
+    lazy_margins: Vec<OnceLock<f32>>,
+    lattice: Lattice,
+    cells: Vec<OnceLock<CellInfo>>,
+    /// The bounds of points outside the grid (the clamped base, exact).
+    outside: CellInfo,
     upp: f32,
     sky_at: f32,
     solid_at: f32,
     origin: [f64; 2],
     cell_size: f64,
     dims: [i64; 2],
+    /// Classify nothing: every block is evaluated (the full-resolution direct renderer).
+    exact_only: bool,
 }
 
 impl<'a, F: Sdf> Prover<'a, F> {
-    fn new(terrain: &'a Terrain<F>, margins: &'a [f32], upp: f32, shade: &ShadeOptions) -> Self {
+    fn new(terrain: &'a Terrain<F>, lowres: &'a LowRes, upp: f32, shade: &ShadeOptions) -> Self {
         let grid = terrain.grid();
         let (nx, ny) = grid.dims();
+        let margins = lowres.margins.as_deref().unwrap_or(&[]);
+        let lazy = if margins.is_empty() { lowres.texels.len() } else { 0 };
         Prover {
             terrain,
             grid,
             margins,
-            cell_materials: (0..nx as usize * ny as usize)
+            lazy_margins: (0..lazy).map(|_| OnceLock::new()).collect(),
+            lattice: lowres.lattice,
+            cells: (0..nx as usize * ny as usize)
                 .map(|_| OnceLock::new())
                 .collect(),
-            lip: terrain.proof_lipschitz(),
-            jump: terrain.cell_border_jump(),
+            outside: CellInfo {
+                material: None,
+                lipschitz: terrain.lipschitz(),
+                error: 0.0,
+            },
             upp,
             sky_at: 0.5 * upp,
             solid_at: -(shade.outline_px.max(0.0) + 0.5) * upp,
             origin: [f64::from(grid.origin().x), f64::from(grid.origin().y)],
             cell_size: f64::from(grid.cell_size()),
             dims: [i64::from(nx), i64::from(ny)],
+            exact_only: false,
         }
     }
 
-    /// The constant material of cell `cell`, if it has one (computed once per frame).
-    fn cell_material(&self, cell: usize) -> Option<MaterialId> {
-        let slot = self.cell_materials.get(cell)?;
-        *slot.get_or_init(|| self.terrain.cell_material(cell))
+    /// The material margin of texel `index` (see [`Terrain::material_margin`]).
+    fn margin(&self, index: usize) -> f32 {
+        if let Some(&m) = self.margins.get(index) {
+            return m;
+        }
+        let Some(slot) = self.lazy_margins.get(index) else {
+            return 0.0;
+        };
+        *slot.get_or_init(|| {
+            let cols = self.lattice.cols as usize;
+            let (c, r) = ((index % cols) as u32, (index / cols) as u32);
+            self.terrain.material_margin(self.lattice.texel_center(c, r))
+        })
+    }
+
+    /// Margins computed on demand so far.
+    fn margins_computed(&self) -> u64 {
+        self.lazy_margins.iter().filter(|m| m.get().is_some()).count() as u64
+    }
+
+    /// The cell at cell coordinates `(ix, iy)`, computed once per frame; points outside the
+    /// grid get [`Prover::outside`].
+    fn cell(&self, ix: i64, iy: i64) -> CellInfo {
+        let inside = (0..self.dims[0]).contains(&ix) && (0..self.dims[1]).contains(&iy);
+        if !inside {
+            return self.outside;
+        }
+        let index = (iy * self.dims[0] + ix) as usize;
+        let Some(slot) = self.cells.get(index) else {
+            return self.outside;
+        };
+        *slot.get_or_init(|| {
+            let bounds = self.terrain.cell_bounds(index);
+            CellInfo {
+                material: self.terrain.cell_material(index),
+                lipschitz: bounds.map_or(f32::INFINITY, |b| b.lipschitz),
+                error: bounds.map_or(f32::INFINITY, |b| b.error),
+            }
+        })
     }
 
     /// Cell coordinate along axis `axis` of world coordinate `v` (not clamped to the grid).
@@ -151,19 +217,47 @@ impl<'a, F: Sdf> Prover<'a, F> {
         ((f64::from(v) - self.origin[axis]) / self.cell_size).floor() as i64
     }
 
-    /// The cell range `B` touches along `axis`, padded by a rounding allowance so that the
-    /// `f32` cell lookup of any pixel of `B` lands inside it.
+    /// The cell range `[lo, hi]` touches along `axis`, padded by a rounding allowance so
+    /// that the `f32` cell lookup of any point in it lands inside.
     fn cell_span(&self, lo: f32, hi: f32, axis: usize) -> (i64, i64) {
         let pad = 1.0e-2 + 1.0e-6 * lo.abs().max(hi.abs());
-        (
-            self.cell_coord(lo - pad, axis),
-            self.cell_coord(hi + pad, axis),
-        )
+        (self.cell_coord(lo - pad, axis), self.cell_coord(hi + pad, axis))
+    }
+
+    /// The bounds of the quad whose texel square is `quad.centers`.
+    fn quad_bounds(&self, quad: &Quad) -> QuadBounds {
+        let [c0, _, _, c3] = quad.centers;
+        let (x0, x1) = (c0.x.min(c3.x), c0.x.max(c3.x));
+        let (y0, y1) = (c0.y.min(c3.y), c0.y.max(c3.y));
+        let (ix0, ix1) = self.cell_span(x0, x1, 0);
+        let (iy0, iy1) = self.cell_span(y0, y1, 1);
+        let (mut lipschitz, mut error) = (0.0f32, 0.0f32);
+        for iy in iy0..=iy1 {
+            for ix in ix0..=ix1 {
+                let c = self.cell(ix, iy);
+                lipschitz = lipschitz.max(c.lipschitz);
+                error = error.max(c.error);
+            }
+        }
+        let borders = (ix1 - ix0) + (iy1 - iy0);
+        QuadBounds {
+            lipschitz,
+            jump: 2.0 * error * borders as f32,
+        }
     }
 
     /// The proof of the block with pixel-centre rectangle `rect` (`[x0, y0, x1, y1]`) in
-    /// the quad of `texels` centred on `centers`.
-    fn classify(&self, quad: &Quad, rect: [f32; 4]) -> Class {
+    /// `quad`, whose bounds are `bounds`.
+    fn classify(
+        &self,
+        quad: &Quad,
+        bounds: QuadBounds,
+        rect: [f32; 4],
+        quad_sign: &mut QuadSign,
+    ) -> Class {
+        if self.exact_only || !(bounds.lipschitz.is_finite() && bounds.jump.is_finite()) {
+            return Class::Uncertain;
+        }
         let [x0, y0, x1, y1] = rect;
         let corners = [
             Vec2::new(x0, y0),
@@ -171,19 +265,16 @@ impl<'a, F: Sdf> Prover<'a, F> {
             Vec2::new(x0, y1),
             Vec2::new(x1, y1),
         ];
-        let span = [self.cell_span(x0, x1, 0), self.cell_span(y0, y1, 1)];
         let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
-        let mut reach_only = [0.0f32; 4];
+        let mut far = [0.0f32; 4];
         for k in 0..4 {
             let c = quad.centers[k];
-            let r = corners.iter().map(|&p| p.distance(c)).fold(0.0, f32::max);
-            let borders = self.borders(c, span);
+            far[k] = corners.iter().map(|&p| p.distance(c)).fold(0.0, f32::max);
             let d = quad.d[k];
-            let reach = self.lip * r * (1.0 + 1.0e-5)
-                + self.jump * borders as f32
+            let reach = bounds.lipschitz * far[k] * (1.0 + 1.0e-5)
+                + bounds.jump
                 + d.abs() / 1024.0
                 + self.upp / 1000.0;
-            reach_only[k] = r;
             lo = lo.max(d - reach);
             hi = hi.min(d + reach);
         }
@@ -191,40 +282,63 @@ impl<'a, F: Sdf> Prover<'a, F> {
             return Class::Sky { lo };
         }
         if !(hi <= self.solid_at) {
-            return Class::Uncertain;
+            let whole = *quad_sign.get_or_insert_with(|| self.event_sign(quad_sign_rect(quad)));
+            let sign = match whole {
+                RectSign::Unknown => self.event_sign(rect),
+                proven => proven,
+            };
+            match sign {
+                RectSign::Above => return Class::Sky { lo: self.sky_at },
+                RectSign::Below => hi = self.solid_at,
+                RectSign::Unknown => return Class::Uncertain,
+            }
         }
-        match self.material(quad, span, reach_only) {
+        match self.material(quad, rect, far) {
             Some(material) => Class::Solid { hi, material },
             None => Class::Uncertain,
         }
     }
 
-    /// Cell borders between texel centre `c` and the block's cell span.
-    fn borders(&self, c: Vec2, span: [(i64, i64); 2]) -> i64 {
-        if self.jump == 0.0 {
-            return 0;
+    /// What the events of the cells `rect` touches force over it (all must agree).
+    fn event_sign(&self, rect: [f32; 4]) -> RectSign {
+        let [x0, y0, x1, y1] = rect;
+        let (ix0, ix1) = self.cell_span(x0, x1, 0);
+        let (iy0, iy1) = self.cell_span(y0, y1, 1);
+        let inside = ix0 >= 0 && iy0 >= 0 && ix1 < self.dims[0] && iy1 < self.dims[1];
+        let band = self.terrain.options().band;
+        if !inside || self.sky_at > band || self.solid_at < -band {
+            return RectSign::Unknown;
         }
-        let axis = |v: f32, a: usize, (lo, hi): (i64, i64)| {
-            let (clo, chi) = self.cell_span(v, v, a);
-            hi.max(chi) - lo.min(clo)
-        };
-        axis(c.x, 0, span[0]) + axis(c.y, 1, span[1])
+        let (min, max) = (Vec2::new(x0, y0), Vec2::new(x1, y1));
+        let mut agreed = None;
+        for iy in iy0..=iy1 {
+            for ix in ix0..=ix1 {
+                let cell = (iy * self.dims[0] + ix) as usize;
+                let sign = self
+                    .terrain
+                    .rect_sign(cell, min, max, self.sky_at, self.solid_at);
+                match (sign, agreed) {
+                    (RectSign::Unknown, _) => return RectSign::Unknown,
+                    (s, Some(a)) if s != a => return RectSign::Unknown,
+                    (s, _) => agreed = Some(s),
+                }
+            }
+        }
+        agreed.unwrap_or(RectSign::Unknown)
     }
 
-    /// The material proof of a block spanning cells `span` (see the module doc).
-    fn material(&self, quad: &Quad, span: [(i64, i64); 2], reach: [f32; 4]) -> Option<Material> {
-        let [(ix0, ix1), (iy0, iy1)] = span;
-        let inside = ix0 >= 0 && iy0 >= 0 && ix1 < self.dims[0] && iy1 < self.dims[1];
-        if !inside {
-            return None;
-        }
-        let index = |ix: i64, iy: i64| (iy * self.dims[0] + ix) as usize;
+    /// The material proof of a block (see the module doc); `far[k]` is the largest distance
+    /// from texel `k` to the block.
+    fn material(&self, quad: &Quad, rect: [f32; 4], far: [f32; 4]) -> Option<Material> {
+        let [x0, y0, x1, y1] = rect;
+        let (ix0, ix1) = self.cell_span(x0, x1, 0);
+        let (iy0, iy1) = self.cell_span(y0, y1, 1);
         let mut first = None;
-        let mut all_constant = true;
         let mut all_same = true;
+        let mut all_constant = true;
         'cells: for iy in iy0..=iy1 {
             for ix in ix0..=ix1 {
-                match (self.cell_material(index(ix, iy)), first) {
+                match (self.cell(ix, iy).material, first) {
                     (None, _) => {
                         all_constant = false;
                         break 'cells;
@@ -243,13 +357,18 @@ impl<'a, F: Sdf> Prover<'a, F> {
         if ix0 != ix1 || iy0 != iy1 {
             return None;
         }
+        let cell = self.cell(ix0, iy0);
+        let index = (iy0 * self.dims[0] + ix0) as usize;
+        // The margin's switch functions have slope at most `L + 1`.
+        let slope = cell.lipschitz.max(1.0) * 2.0;
         (0..4).find_map(|k| {
             let c = quad.centers[k];
             let same_cell = self.cell_span(c.x, c.x, 0) == (ix0, ix0)
                 && self.cell_span(c.y, c.y, 1) == (iy0, iy0)
-                && self.grid.cell_index(c) == Some(index(ix0, iy0));
-            let needed = 2.0 * self.lip * reach[k] * (1.0 + 1.0e-5) + self.upp / 1000.0;
-            (same_cell && needed < quad.margins[k]).then_some(Material::One(quad.materials[k]))
+                && self.grid.cell_index(c) == Some(index);
+            let needed = slope * far[k] * (1.0 + 1.0e-5) + self.upp / 1000.0;
+            (same_cell && needed < self.margin(quad.texels[k]))
+                .then_some(Material::One(quad.materials[k]))
         })
     }
 
@@ -258,9 +377,23 @@ impl<'a, F: Sdf> Prover<'a, F> {
     fn pixel_material(&self, material: Material, p: Vec2) -> Option<MaterialId> {
         match material {
             Material::One(m) => Some(m),
-            Material::PerCell => self.cell_material(self.grid.cell_index(p)?),
+            Material::PerCell => {
+                let cell = self.grid.cell_index(p)?;
+                let (nx, _) = self.grid.dims();
+                let (ix, iy) = (cell % nx as usize, cell / nx as usize);
+                self.cell(ix as i64, iy as i64).material
+            }
         }
     }
+}
+
+/// The event sign of a whole quad, computed once the first block needs it.
+type QuadSign = Option<RectSign>;
+
+/// The rectangle of a quad's texel square (it holds every pixel centre of the quad).
+fn quad_sign_rect(quad: &Quad) -> [f32; 4] {
+    let [c0, _, _, c3] = quad.centers;
+    [c0.x.min(c3.x), c0.y.min(c3.y), c0.x.max(c3.x), c0.y.max(c3.y)]
 }
 
 /// The four texels of one quad as the proof reads them.
@@ -268,11 +401,12 @@ struct Quad {
     centers: [Vec2; 4],
     d: [f32; 4],
     materials: [MaterialId; 4],
-    margins: [f32; 4],
+    /// Indices of the texels in the lattice.
+    texels: [usize; 4],
 }
 
 impl Quad {
-    fn new(tex: &Textures, margins: &[f32], c: u32, r: u32) -> Quad {
+    fn new(tex: &Textures, c: u32, r: u32) -> Quad {
         let texels = tex.quad(c, r);
         let cols = tex.lattice.cols as usize;
         let at = |dc: u32, dr: u32| (r + dr) as usize * cols + (c + dc) as usize;
@@ -281,7 +415,7 @@ impl Quad {
             centers: tex.quad_centers(c, r),
             d: texels.map(|t| t.d),
             materials: texels.map(|t| t.material),
-            margins: idx.map(|i| margins.get(i).copied().unwrap_or(0.0)),
+            texels: idx,
         }
     }
 }
@@ -349,10 +483,12 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
     /// Classifies the blocks of one quad, draws the proven ones and queues the others.
     fn quad<S: Sink>(&self, scratch: &mut RefineScratch, block: Block, sink: &mut S) {
         let layout = self.layout;
-        let quad = Quad::new(self.tex, self.prover.margins, block.c, block.r);
+        let quad = Quad::new(self.tex, block.c, block.r);
+        let bounds = self.prover.quad_bounds(&quad);
         let (xs, ys) = (block.xs.clone(), block.ys.clone());
         let col_blocks: Vec<Range<usize>> = chunks(xs.clone()).collect();
         scratch.classes.clear();
+        let mut quad_sign = None;
         for by in chunks(ys.clone()) {
             let (ya, yb) = (layout.rows.world[by.start], layout.rows.world[by.end - 1]);
             for bx in &col_blocks {
@@ -361,7 +497,9 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
                     layout.columns.world[bx.end - 1],
                 );
                 let rect = [x0, ya.min(yb), x1, ya.max(yb)];
-                scratch.classes.push(self.prover.classify(&quad, rect));
+                scratch
+                    .classes
+                    .push(self.prover.classify(&quad, bounds, rect, &mut quad_sign));
             }
         }
         self.count(&scratch.classes, &col_blocks, ys.len());
@@ -485,42 +623,6 @@ fn chunks(range: Range<usize>) -> impl Iterator<Item = Range<usize>> {
         .map(move |s| s..(s + BLOCK).min(range.end))
 }
 
-/// Computes the material margin of every texel of `lowres` whose cell's material is not
-/// constant (the others are `+inf` without evaluation); returns how many were evaluated.
-pub(super) fn add_margins<F: Sdf + Sync>(
-    terrain: &Terrain<F>,
-    lowres: &mut LowRes,
-    threads: usize,
-) -> Result<u64, TwinError> {
-    let lattice = lowres.lattice;
-    let cols = lattice.cols as usize;
-    let mut margins = vec![0.0f32; lowres.texels.len()];
-    let evaluated = AtomicU64::new(0);
-    let units: Vec<(usize, &mut [f32])> = margins
-        .chunks_mut(cols * 8)
-        .enumerate()
-        .map(|(i, chunk)| (i * cols * 8, chunk))
-        .collect();
-    run_units(
-        units,
-        threads,
-        || (),
-        |_, (first, out)| {
-            let mut n = 0;
-            for (i, m) in out.iter_mut().enumerate() {
-                let t = first + i;
-                let p = lattice.texel_center((t % cols) as u32, (t / cols) as u32);
-                *m = terrain.material_margin(p);
-                n += 1;
-            }
-            evaluated.fetch_add(n, Ordering::Relaxed);
-            Ok::<(), TwinError>(())
-        },
-    )?;
-    lowres.margins = Some(margins);
-    Ok(evaluated.load(Ordering::Relaxed))
-}
-
 /// The shaded image of a `refine` frame.
 struct ImageSink<'a> {
     bytes: &'a mut [u8],
@@ -529,6 +631,8 @@ struct ImageSink<'a> {
     shader: &'a Shader,
     palette: &'a [[u8; 3]],
     upp: f32,
+    /// Tint refined pixels (the overlay of [`super::render_refine_overlay`]).
+    tint: bool,
 }
 
 impl ImageSink<'_> {
@@ -559,7 +663,10 @@ impl Sink for ImageSink<'_> {
         } else {
             Vec2::ZERO
         };
-        let rgb = self.shade(yi, s.distance, n, s.material);
+        let mut rgb = self.shade(yi, s.distance, n, s.material);
+        if self.tint {
+            rgb = [rgb[0] / 2 + 128, rgb[1] / 2, rgb[2] / 2];
+        }
         self.put(x, yi, rgb);
     }
 }
@@ -590,7 +697,7 @@ impl Sink for FieldSink<'_> {
 }
 
 /// Pass 3 of mode `refine` into an RGBA image (see the module doc). `lowres` holds the
-/// planes pair values and the margins; `margin_evals` is how many margins pass 1 computed.
+/// planes pair values (and the margins, when pass 1 computed them).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn render_refined<F: Sdf + Sync>(
     terrain: &Terrain<F>,
@@ -600,12 +707,14 @@ pub(super) fn render_refined<F: Sdf + Sync>(
     palette: &[[u8; 3]],
     camera: &Camera,
     shade: &ShadeOptions,
-    margin_evals: u64,
     threads: usize,
+    exact_only: bool,
+    tint: bool,
 ) -> Result<(RgbaImage, RefineStats), TwinError> {
-    let margins = lowres.margins.as_deref().unwrap_or(&[]);
+    let mut prover = Prover::new(terrain, lowres, camera.units_per_pixel, shade);
+    prover.exact_only = exact_only;
     let refiner = Refiner {
-        prover: Prover::new(terrain, margins, camera.units_per_pixel, shade),
+        prover,
         tex,
         layout,
         counters: Counters::default(),
@@ -627,11 +736,13 @@ pub(super) fn render_refined<F: Sdf + Sync>(
                 shader: &shader,
                 palette,
                 upp: camera.units_per_pixel,
+                tint,
             };
             refiner.band(scratch, rows, &mut sink)
         },
     )?;
     let pixels = u64::from(camera.width) * u64::from(camera.height);
+    let margin_evals = refiner.prover.margins_computed();
     let stats = refiner.stats(lowres.texels.len() as u64, margin_evals, pixels);
     Ok((image, stats))
 }
@@ -645,10 +756,12 @@ pub(super) fn field_refined<F: Sdf + Sync>(
     camera: &Camera,
     shade: &ShadeOptions,
     threads: usize,
+    exact_only: bool,
 ) -> Result<FieldImage, TwinError> {
-    let margins = lowres.margins.as_deref().unwrap_or(&[]);
+    let mut prover = Prover::new(terrain, lowres, camera.units_per_pixel, shade);
+    prover.exact_only = exact_only;
     let refiner = Refiner {
-        prover: Prover::new(terrain, margins, camera.units_per_pixel, shade),
+        prover,
         tex,
         layout,
         counters: Counters::default(),
