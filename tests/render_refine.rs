@@ -51,7 +51,10 @@ fn cratered(count: usize, seed: u64) -> (Level, Terrain<Graph>) {
                 let e = if roll < 0.6 {
                     Event::carve(p, r).unwrap()
                 } else if roll < 0.8 {
-                    Event::carve(p, r).unwrap().with_rim(2.0 + 8.0 * rng.unit()).unwrap()
+                    Event::carve(p, r)
+                        .unwrap()
+                        .with_rim(2.0 + 8.0 * rng.unit())
+                        .unwrap()
                 } else {
                     Event::fill(p + Vec2::new(0.0, 0.4 * r), r * 0.5, fill).unwrap()
                 };
@@ -111,11 +114,17 @@ fn sky_and_surface_pixels_are_the_exact_render_bit_for_bit() {
     for cam in views() {
         let exact = render_exact(&terrain, &pal, &cam, &ExactRenderOptions::default());
         let direct = render_direct(&terrain, &pal, &cam, &shade, 0).unwrap();
-        assert_eq!(exact, direct, "{cam:?}: the batch direct render is the exact render");
+        assert_eq!(
+            exact, direct,
+            "{cam:?}: the batch direct render is the exact render"
+        );
         let truth = exact_field(&terrain, &cam, 0).unwrap();
-        let (image, stats) = render_refine(&terrain, &pal, &cam, &refine(Scale::Sixteenth), 0)
-            .unwrap();
-        assert_eq!(image, render_twin(&terrain, &pal, &cam, &refine(Scale::Sixteenth), 0).unwrap());
+        let (image, stats) =
+            render_refine(&terrain, &pal, &cam, &refine(Scale::Sixteenth), 0).unwrap();
+        assert_eq!(
+            image,
+            render_twin(&terrain, &pal, &cam, &refine(Scale::Sixteenth), 0).unwrap()
+        );
         let mut solid_differing = 0;
         for (i, (p, q)) in exact.pixels().zip(image.pixels()).enumerate() {
             if truth.distance_px[i] > deep {
@@ -126,7 +135,10 @@ fn sky_and_surface_pixels_are_the_exact_render_bit_for_bit() {
         }
         // Inside, only the depth shade comes from the texels: few pixels, never by much.
         let n = u64::from(cam.width) * u64::from(cam.height);
-        assert!(solid_differing * 10 < n, "{cam:?}: {solid_differing} solid pixels differ");
+        assert!(
+            solid_differing * 10 < n,
+            "{cam:?}: {solid_differing} solid pixels differ"
+        );
         assert_eq!(stats.pixels, n);
         assert!(stats.refined_pixels < n / 2, "{cam:?}: {stats:?}");
         assert_eq!(
@@ -145,7 +157,8 @@ fn cell_slope_bounds_hold_between_sampled_points() {
     let s = grid.cell_size();
     for cell in 0..(nx * ny) as usize {
         let bounds = terrain.cell_bounds(cell).unwrap();
-        let min = grid.origin() + Vec2::new((cell as u32 % nx) as f32, (cell as u32 / nx) as f32) * s;
+        let min =
+            grid.origin() + Vec2::new((cell as u32 % nx) as f32, (cell as u32 / nx) as f32) * s;
         for _ in 0..12 {
             let a = min + Vec2::new(rng.unit(), rng.unit()) * (s * 0.999);
             let b = min + Vec2::new(rng.unit(), rng.unit()) * (s * 0.999);
@@ -170,7 +183,8 @@ fn event_signs_and_material_margins_hold_at_sampled_points() {
     let (mut above, mut below, mut margins) = (0, 0, 0);
     for _ in 0..20_000 {
         let cell = rng.below(u64::from(nx * ny)) as usize;
-        let min = grid.origin() + Vec2::new((cell as u32 % nx) as f32, (cell as u32 / nx) as f32) * s;
+        let min =
+            grid.origin() + Vec2::new((cell as u32 % nx) as f32, (cell as u32 / nx) as f32) * s;
         let side = 1.0 + rng.unit() * 12.0;
         let lo = min + Vec2::new(rng.unit(), rng.unit()) * (s - side);
         let hi = lo + Vec2::splat(side);
@@ -198,11 +212,18 @@ fn event_signs_and_material_margins_hold_at_sampled_points() {
                 let q = p + Vec2::new(rng.unit() - 0.5, rng.unit() - 0.5) * radius * 1.4;
                 let inside = grid.cell_index(q) == Some(cell) && q.distance(p) < radius * 0.999;
                 if inside {
-                    assert_eq!(terrain.sample(q).material, material, "margin {m} at {p}, {q}");
+                    assert_eq!(
+                        terrain.sample(q).material,
+                        material,
+                        "margin {m} at {p}, {q}"
+                    );
                 }
             }
         }
     }
     // The proofs are not vacuous here.
-    assert!(above > 1000 && below > 1000 && margins > 100, "{above} {below} {margins}");
+    assert!(
+        above > 1000 && below > 1000 && margins > 100,
+        "{above} {below} {margins}"
+    );
 }

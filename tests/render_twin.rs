@@ -357,7 +357,10 @@ fn fast_pass_three_equals_the_per_pixel_formulas() {
     for cam in &cameras {
         for scale in Scale::ALL {
             // Refine evaluates the field in pass 3: it has no texture-only pass 3.
-            for mode in Reconstruction::ALL.into_iter().filter(|m| *m != Reconstruction::Refine) {
+            for mode in Reconstruction::ALL
+                .into_iter()
+                .filter(|m| *m != Reconstruction::Refine)
+            {
                 for filter in Upsample::ALL {
                     let opts = options(scale, mode, filter);
                     let mut low =
@@ -409,7 +412,10 @@ fn shading_the_field_image_gives_the_rendered_image() {
     let pal = palette(&level);
     let cam = camera(1240.0, 650.0, 1.25, 480, 300);
     for scale in [Scale::Sixteenth, Scale::Quarter] {
-        for mode in Reconstruction::ALL.into_iter().filter(|m| *m != Reconstruction::Refine) {
+        for mode in Reconstruction::ALL
+            .into_iter()
+            .filter(|m| *m != Reconstruction::Refine)
+        {
             let opts = options(scale, mode, Upsample::CatmullRom);
             let mut low = sdf_pass(&terrain, &Lattice::new(&cam, scale).unwrap(), 0).unwrap();
             reconstruct(&mut low, mode).unwrap();

@@ -8,10 +8,12 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use craterfield::render2d::fidelity::{self, FeatureKind, Fidelity, Recall};
+use craterfield::render2d::twin::{exact_field, render_direct};
 use craterfield::render2d::{
-    ExactRenderOptions, Reconstruction, RenderOptions, Scale, Upsample, field_image, render_exact,
-    render_twin,
+    ExactRenderOptions, FieldImage, Reconstruction, RenderOptions, Scale, Upsample, field_image,
+    render_exact, render_twin,
 };
+use craterfield::visdiff::{self, DiffOptions};
 use image::RgbaImage;
 use serde::Serialize;
 
@@ -32,6 +34,9 @@ pub struct Options {
     /// Seed of the level's barrage.
     #[arg(long, default_value_t = 7)]
     pub seed: u64,
+    /// Seed of the `level-reseeded` scene's barrage (default: a new one every run).
+    #[arg(long)]
+    pub reseed: Option<u64>,
     /// Only these scenes, comma-separated (default: all).
     #[arg(long, value_delimiter = ',')]
     pub scenes: Vec<String>,
@@ -100,6 +105,12 @@ struct Row {
     gap_target_recall: Option<f64>,
     mean_offset_px: f64,
     max_offset_px: f64,
+    /// Pixels inside in both images whose materials differ, percent of all pixels.
+    material_mismatch_pct: f64,
+    /// Features at least 1 px wide (solids and gaps) kept, over those in the truth.
+    recall_1px: Option<f64>,
+    /// FLIP of the shaded picture against the exact render (only at the target scale).
+    flip: Option<f64>,
     /// Features behind the recalls: present in the truth, and kept.
     solid_target: Recall,
     gap_target: Recall,
@@ -164,6 +175,15 @@ pub fn fidelity(options: &Options) -> Result<ExitCode, String> {
         lost: Vec::new(),
         notes: Vec::new(),
     };
+    // A barrage no run has seen before, printed so that a failure can be replayed.
+    let reseeded = options.reseed.unwrap_or_else(|| {
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(1, |d| d.as_nanos() as u64)
+    });
+    report.notes.push(format!(
+        "level-reseeded: barrage seed {reseeded} (--reseed {reseeded} repeats it)"
+    ));
     for name in names {
         if name == "prospero" && !prospero.is_file() {
             report.notes.push(format!(
@@ -173,7 +193,12 @@ pub fn fidelity(options: &Options) -> Result<ExitCode, String> {
             continue;
         }
         let start = Instant::now();
-        let scene = fidelity_scenes::build(name, &prospero, options.seed)?;
+        let seed = if name == "level-reseeded" {
+            reseeded
+        } else {
+            options.seed
+        };
+        let scene = fidelity_scenes::build(name, &prospero, seed)?;
         let build_ms = ms_since(start);
         measure_scene(&scene, build_ms, options, &mut report)?;
     }
@@ -226,8 +251,18 @@ fn measure_scene(
 ) -> Result<(), String> {
     let camera = &scene.camera;
     let start = Instant::now();
-    let truth = fidelity::exact_distances(&scene.terrain, camera, options.threads)
+    let truth_field = exact_field(&scene.terrain, camera, options.threads)
         .map_err(|e| format!("{}: {e}", scene.name))?;
+    let truth = &truth_field.distance_px;
+    let shade = RenderOptions::default().shade;
+    let exact_image = render_direct(
+        &scene.terrain,
+        &scene.palette,
+        camera,
+        &shade,
+        options.threads,
+    )
+    .map_err(|e| format!("{}: {e}", scene.name))?;
     report.scenes.push(SceneInfo {
         scene: scene.name,
         width: camera.width,
@@ -250,18 +285,38 @@ fn measure_scene(
             let f = fidelity::measure(
                 camera.width,
                 camera.height,
-                &truth,
+                truth,
                 &field.distance_px,
                 &scene.features,
             )
             .map_err(|e| format!("{} {}: {e}", scene.name, method.name))?;
+            let flip = if scale.divisor() == TARGET_SCALE {
+                let image = render_twin(
+                    &scene.terrain,
+                    &scene.palette,
+                    camera,
+                    &render_options(method, scale),
+                    options.threads,
+                )
+                .map_err(|e| format!("{} {}: {e}", scene.name, method.name))?;
+                let diff = visdiff::compare(&exact_image, &image, &DiffOptions::default())
+                    .map_err(|e| e.to_string())?;
+                Some(diff.flip)
+            } else {
+                None
+            };
+            let extra = Extra {
+                material_mismatch_pct: material_mismatch(&truth_field, &field),
+                recall_1px: recall_1px(scene, truth, &field.distance_px),
+                flip,
+            };
             report
                 .rows
-                .push(row(scene.name, method.name, scale, &f, render_ms));
+                .push(row(scene.name, method.name, scale, &f, extra, render_ms));
             if method.name == "planes" && scale.divisor() == TARGET_SCALE {
                 report
                     .lost
-                    .extend(lost_features(scene, &truth, &field.distance_px));
+                    .extend(lost_features(scene, truth, &field.distance_px));
             }
         }
     }
@@ -269,6 +324,32 @@ fn measure_scene(
         write_pictures(scene, dir, options.threads)?;
     }
     Ok(())
+}
+
+/// Pixels inside in both fields whose materials differ, percent of all pixels.
+fn material_mismatch(truth: &FieldImage, test: &FieldImage) -> f64 {
+    let differ = (0..truth.distance_px.len())
+        .filter(|&i| {
+            truth.distance_px[i] < 0.0
+                && test.distance_px[i] < 0.0
+                && truth.material[i] != test.material[i]
+        })
+        .count();
+    100.0 * differ as f64 / truth.distance_px.len().max(1) as f64
+}
+
+/// Features at least 1 px wide present in both, over those present in the truth.
+fn recall_1px(scene: &Scene, truth: &[f32], test: &[f32]) -> Option<f64> {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let wide = scene.features.iter().filter(|f| f.width_px >= 1.0);
+    let present: Vec<_> = wide
+        .filter(|f| fidelity::feature_present(w, h, truth, f))
+        .collect();
+    let kept = present
+        .iter()
+        .filter(|f| fidelity::feature_present(w, h, test, f))
+        .count();
+    (!present.is_empty()).then(|| kept as f64 / present.len() as f64)
 }
 
 /// The features at least 2 px wide present in the truth and missing from `test`.
@@ -293,14 +374,25 @@ fn lost_features(scene: &Scene, truth: &[f32], test: &[f32]) -> Vec<LostFeature>
         .collect()
 }
 
+/// What a row measures besides [`Fidelity`].
+struct Extra {
+    material_mismatch_pct: f64,
+    recall_1px: Option<f64>,
+    flip: Option<f64>,
+}
+
 fn row(
     scene: &'static str,
     method: &'static str,
     scale: Scale,
     f: &Fidelity,
+    extra: Extra,
     render_ms: f64,
 ) -> Row {
     Row {
+        material_mismatch_pct: extra.material_mismatch_pct,
+        recall_1px: extra.recall_1px,
+        flip: extra.flip,
         scene,
         method,
         scale: scale.divisor(),
@@ -345,7 +437,75 @@ fn verdicts(rows: &[Row]) -> Vec<Verdict> {
     out.push(recall_verdict(rows, "solid", 0.99, |r| r.solid_target));
     out.push(recall_verdict(rows, "gap", 0.95, |r| r.gap_target));
     out.push(offset_verdict(rows));
+    out.extend(refine_verdicts(rows));
     out
+}
+
+/// The targets of `refine` at 1/16, on every scene: inside/outside and material mismatch at
+/// most 0.01%, every feature at least 1 px wide kept, mean contour offset at most 0.05 px,
+/// FLIP against the exact render at most 0.003.
+fn refine_verdicts(rows: &[Row]) -> Vec<Verdict> {
+    type Pick = fn(&Row) -> Option<f64>;
+    let checks: [(&str, Pick, f64, bool); 5] = [
+        (
+            "inside/outside mismatch <= 0.01%",
+            |r| Some(r.mismatch_pct),
+            0.01,
+            false,
+        ),
+        (
+            "material mismatch <= 0.01%",
+            |r| Some(r.material_mismatch_pct),
+            0.01,
+            false,
+        ),
+        (
+            "recall of features >= 1 px wide 100%",
+            |r| r.recall_1px,
+            1.0,
+            true,
+        ),
+        (
+            "mean contour offset <= 0.05 px",
+            |r| Some(r.mean_offset_px),
+            0.05,
+            false,
+        ),
+        (
+            "FLIP against the exact render <= 0.003",
+            |r| r.flip,
+            0.003,
+            false,
+        ),
+    ];
+    checks
+        .into_iter()
+        .map(|(what, pick, goal, at_least)| {
+            let judged: Vec<(&str, f64)> = target_rows(rows, "refine")
+                .filter_map(|r| pick(r).map(|v| (r.scene, v)))
+                .collect();
+            let failing: Vec<String> = judged
+                .iter()
+                .filter(|(_, v)| if at_least { *v < goal } else { *v > goal })
+                .map(|(s, v)| format!("{s} {v:.4}"))
+                .collect();
+            let worst = judged
+                .iter()
+                .map(|(_, v)| *v)
+                .fold(if at_least { f64::INFINITY } else { 0.0 }, |a, v| {
+                    if at_least { a.min(v) } else { a.max(v) }
+                });
+            Verdict {
+                target: format!("refine {what} on every scene"),
+                passed: (!judged.is_empty()).then_some(failing.is_empty()),
+                detail: if failing.is_empty() {
+                    format!("worst {worst:.4} over {} scenes", judged.len())
+                } else {
+                    format!("failing: {}", failing.join(", "))
+                },
+            }
+        })
+        .collect()
 }
 
 /// `planes` beats `rival` on a scene when its mismatch is lower and neither its solid nor its
@@ -475,11 +635,14 @@ fn print_table(report: &Report) {
     }
     println!();
     println!(
-        "{:<12} {:<10} {:>5} {:>10} {:>8} {:>8} {:>9} {:>9} {:>9} {:>8} {:>9}",
+        "{:<14} {:<10} {:>5} {:>10} {:>9} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>8} {:>9}",
         "scene",
         "method",
         "scale",
         "mismatch%",
+        "material%",
+        "flip",
+        "all>=1",
         "solid",
         "gap",
         "solid>=2",
@@ -490,11 +653,14 @@ fn print_table(report: &Report) {
     );
     for r in &report.rows {
         println!(
-            "{:<12} {:<10} {:>5} {:>10.4} {:>8} {:>8} {:>9} {:>9} {:>9.3} {:>8.2} {:>9.1}",
+            "{:<14} {:<10} {:>5} {:>10.4} {:>9.4} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9.3} {:>8.2} {:>9.1}",
             r.scene,
             r.method,
             format!("1/{}", r.scale),
             r.mismatch_pct,
+            r.material_mismatch_pct,
+            r.flip.map_or("-".into(), |f| format!("{f:.4}")),
+            pct(r.recall_1px),
             pct(r.solid_recall),
             pct(r.gap_recall),
             pct(r.solid_target_recall),

@@ -243,14 +243,18 @@ fn cpu_rows(
     let err = |e: craterfield::render2d::TwinError| e.to_string();
     let shade = RenderOptions::default().shade;
     let direct = cpu_times(frames.min(4), || {
-        render_direct(terrain, palette, camera, &shade, 0).map(|_| ()).map_err(err)
+        render_direct(terrain, palette, camera, &shade, 0)
+            .map(|_| ())
+            .map_err(err)
     })?;
     let planes = RenderOptions {
         reconstruction: Reconstruction::Planes,
         ..RenderOptions::default()
     };
     let planes_t = cpu_times(frames, || {
-        render_twin(terrain, palette, camera, &planes, 0).map(|_| ()).map_err(err)
+        render_twin(terrain, palette, camera, &planes, 0)
+            .map(|_| ())
+            .map_err(err)
     })?;
     let refine = RenderOptions {
         reconstruction: Reconstruction::Refine,
@@ -258,7 +262,9 @@ fn cpu_rows(
     };
     let mut stats = RefineStats::default();
     let refine_t = cpu_times(frames, || {
-        stats = render_refine(terrain, palette, camera, &refine, 0).map_err(err)?.1;
+        stats = render_refine(terrain, palette, camera, &refine, 0)
+            .map_err(err)?
+            .1;
         Ok(())
     })?;
     let row = |pipeline, scale, mode, times| CpuRow {

@@ -34,7 +34,7 @@ const ANGLE_STEPS: usize = 18;
 const LEVEL_EXPLOSIONS: usize = 5_000;
 
 /// The scenes in the order the bench runs them.
-pub const NAMES: [&str; 7] = [
+pub const NAMES: [&str; 8] = [
     "thin-lines",
     "thin-gaps",
     "islands",
@@ -42,6 +42,7 @@ pub const NAMES: [&str; 7] = [
     "prospero",
     "level-intact",
     "level",
+    "level-reseeded",
 ];
 
 /// A terrain, its view and its declared features (pixel coordinates of the camera).
@@ -69,6 +70,7 @@ pub fn build(name: &str, prospero: &Path, seed: u64) -> Result<Scene, String> {
         "prospero" => prospero_scene(prospero),
         "level-intact" => level_scene("level-intact", 0, seed),
         "level" => level_scene("level", LEVEL_EXPLOSIONS, seed),
+        "level-reseeded" => level_scene("level-reseeded", LEVEL_EXPLOSIONS, seed),
         other => Err(format!("unknown fidelity scene {other:?}")),
     }
 }

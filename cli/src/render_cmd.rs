@@ -229,7 +229,12 @@ fn terrain(options: &Options, level: &Level) -> Result<Terrain<Graph>, String> {
     let mut terrain = level.terrain().map_err(|e| e.to_string())?;
     for chunk in 0..options.events.div_ceil(100) {
         let n = (options.events - chunk * 100).min(100);
-        barrage::fire(level, &mut terrain, n, options.seed.wrapping_add(chunk as u64));
+        barrage::fire(
+            level,
+            &mut terrain,
+            n,
+            options.seed.wrapping_add(chunk as u64),
+        );
     }
     // Past every event's growth: the craters at their final size.
     terrain.set_tick(terrain.tick().saturating_add(120));
@@ -311,7 +316,9 @@ fn draw(
     if let Some(drawn) = gpu {
         return Ok(drawn);
     }
-    let image = striped(camera, |stripe| draw_cpu(options, mode, terrain, palette, stripe))?;
+    let image = striped(camera, |stripe| {
+        draw_cpu(options, mode, terrain, palette, stripe)
+    })?;
     Ok((image, "CPU".into()))
 }
 
@@ -328,9 +335,10 @@ fn draw_gpu(
     };
     let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options)
         .map_err(|e| e.to_string())?;
-    r.prepare(terrain, palette, camera).map_err(|e| e.to_string())?;
-    let image = render_to_image(&r, camera.width, camera.height, pipeline)
+    r.prepare(terrain, palette, camera)
         .map_err(|e| e.to_string())?;
+    let image =
+        render_to_image(&r, camera.width, camera.height, pipeline).map_err(|e| e.to_string())?;
     Ok((image, format!("GPU ({})", ctx.describe())))
 }
 
@@ -422,7 +430,8 @@ fn compare(
         Mode::Pipeline(o) => striped_field(camera, |c| field_image(terrain, c, o, threads))?,
     };
     let (mismatch_pct, material_mismatch_pct) = mismatches(&truth, &test);
-    let report = visdiff::compare(&exact, image, &DiffOptions::default()).map_err(|e| e.to_string())?;
+    let report =
+        visdiff::compare(&exact, image, &DiffOptions::default()).map_err(|e| e.to_string())?;
     let heat = visdiff::heatmap(&report, HeatSource::Pixel);
     let path = heatmap_path(&options.out);
     visdiff::save_png(&heat, &path).map_err(|e| e.to_string())?;
@@ -483,13 +492,18 @@ fn mismatches(truth: &FieldImage, test: &FieldImage) -> (f64, f64) {
 
 /// `out.png` -> `out-heatmap.png`.
 fn heatmap_path(out: &Path) -> PathBuf {
-    let stem = out.file_stem().map_or("render".into(), |s| s.to_string_lossy());
+    let stem = out
+        .file_stem()
+        .map_or("render".into(), |s| s.to_string_lossy());
     out.with_file_name(format!("{stem}-heatmap.png"))
 }
 
 fn print_report(report: &Report, json: bool) -> Result<(), String> {
     if json {
-        println!("{}", serde_json::to_string(report).map_err(|e| e.to_string())?);
+        println!(
+            "{}",
+            serde_json::to_string(report).map_err(|e| e.to_string())?
+        );
         return Ok(());
     }
     println!(

@@ -154,15 +154,22 @@ pub fn lipschitz_bound(instrs: &[Instr], registers: usize, out: u32) -> f32 {
             | Op::RepeatOffset
             | Op::Select => UNKNOWN,
             // Masks, integers and materials are not distances.
-            Op::RepeatIndex | Op::RepeatActive | Op::Lt | Op::And | Op::MatConst | Op::MatSelect => {
-                UNKNOWN
-            }
+            Op::RepeatIndex
+            | Op::RepeatActive
+            | Op::Lt
+            | Op::And
+            | Op::MatConst
+            | Op::MatSelect => UNKNOWN,
         };
         if let Some(slot) = regs.get_mut(i.dst as usize) {
             *slot = v;
         }
     }
-    let l = regs.get(out as usize).copied().unwrap_or(UNKNOWN).lipschitz();
+    let l = regs
+        .get(out as usize)
+        .copied()
+        .unwrap_or(UNKNOWN)
+        .lipschitz();
     if l.is_nan() { f32::INFINITY } else { l }
 }
 

@@ -118,12 +118,17 @@ pub fn exact_field<F: Sdf + Sync>(
     let (lowres, options) = direct_inputs(camera, &shade)?;
     let tex = Textures::new(&lowres, &options)?;
     let layout = Layout::new(camera, &tex);
-    field_refined(terrain, &lowres, &tex, &layout, camera, &shade, threads, true)
+    field_refined(
+        terrain, &lowres, &tex, &layout, camera, &shade, threads, true,
+    )
 }
 
 /// Empty textures on the coarsest lattice of `camera`: the direct renderers use only their
 /// pixel layout.
-fn direct_inputs(camera: &Camera, shade: &ShadeOptions) -> Result<(LowRes, RenderOptions), TwinError> {
+fn direct_inputs(
+    camera: &Camera,
+    shade: &ShadeOptions,
+) -> Result<(LowRes, RenderOptions), TwinError> {
     let options = RenderOptions {
         scale: Scale::ThirtySecond,
         reconstruction: Reconstruction::Refine,

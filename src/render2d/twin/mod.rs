@@ -37,9 +37,8 @@ use crate::field2d::tape::EvalError;
 
 pub use f16::{F16_MAX, f16_bits, f16_to_f32, round_f16};
 pub use frame::{
-    exact_field, field_image, field_image_lowres, render_direct, render_lowres, render_lowres_per_pixel,
-    render_refine, render_refine_overlay,
-    render_twin,
+    exact_field, field_image, field_image_lowres, render_direct, render_lowres,
+    render_lowres_per_pixel, render_refine, render_refine_overlay, render_twin,
 };
 pub use reconstruct::reconstruct;
 pub use refine::{BLOCK as REFINE_BLOCK, RefineStats};

@@ -67,7 +67,7 @@ pub struct RefineStats {
     /// Pixels evaluated exactly.
     pub refined_pixels: u64,
     /// Field evaluations of the frame: pass 1's texels, the material margins computed for
-    /// them, and the refined pixels.
+    /// them, the corners of solid blocks shaded from exact samples, and the refined pixels.
     pub exact_evaluations: u64,
 }
 
@@ -99,8 +99,16 @@ enum Material {
 /// What a block is proven to be.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Class {
-    Sky { lo: f32 },
-    Solid { hi: f32, material: Material },
+    Sky {
+        lo: f32,
+    },
+    Solid {
+        hi: f32,
+        material: Material,
+        /// Whether the block reaches depths whose shade depends on the distance: it is then
+        /// shaded from exact samples at its corners instead of the texels.
+        shaded: bool,
+    },
     Uncertain,
 }
 
@@ -134,6 +142,8 @@ pub(super) struct Prover<'a, F: Sdf> {
     upp: f32,
     sky_at: f32,
     solid_at: f32,
+    /// Deeper than this every solid pixel of a material and row has one colour.
+    deep_at: f32,
     origin: [f64; 2],
     cell_size: f64,
     dims: [i64; 2],
@@ -146,7 +156,11 @@ impl<'a, F: Sdf> Prover<'a, F> {
         let grid = terrain.grid();
         let (nx, ny) = grid.dims();
         let margins = lowres.margins.as_deref().unwrap_or(&[]);
-        let lazy = if margins.is_empty() { lowres.texels.len() } else { 0 };
+        let lazy = if margins.is_empty() {
+            lowres.texels.len()
+        } else {
+            0
+        };
         Prover {
             terrain,
             grid,
@@ -164,6 +178,7 @@ impl<'a, F: Sdf> Prover<'a, F> {
             upp,
             sky_at: 0.5 * upp,
             solid_at: -(shade.outline_px.max(0.0) + 0.5) * upp,
+            deep_at: -Shader::new(shade, 1).interior_depth() * upp,
             origin: [f64::from(grid.origin().x), f64::from(grid.origin().y)],
             cell_size: f64::from(grid.cell_size()),
             dims: [i64::from(nx), i64::from(ny)],
@@ -182,13 +197,17 @@ impl<'a, F: Sdf> Prover<'a, F> {
         *slot.get_or_init(|| {
             let cols = self.lattice.cols as usize;
             let (c, r) = ((index % cols) as u32, (index / cols) as u32);
-            self.terrain.material_margin(self.lattice.texel_center(c, r))
+            self.terrain
+                .material_margin(self.lattice.texel_center(c, r))
         })
     }
 
     /// Margins computed on demand so far.
     fn margins_computed(&self) -> u64 {
-        self.lazy_margins.iter().filter(|m| m.get().is_some()).count() as u64
+        self.lazy_margins
+            .iter()
+            .filter(|m| m.get().is_some())
+            .count() as u64
     }
 
     /// The cell at cell coordinates `(ix, iy)`, computed once per frame; points outside the
@@ -221,7 +240,10 @@ impl<'a, F: Sdf> Prover<'a, F> {
     /// that the `f32` cell lookup of any point in it lands inside.
     fn cell_span(&self, lo: f32, hi: f32, axis: usize) -> (i64, i64) {
         let pad = 1.0e-2 + 1.0e-6 * lo.abs().max(hi.abs());
-        (self.cell_coord(lo - pad, axis), self.cell_coord(hi + pad, axis))
+        (
+            self.cell_coord(lo - pad, axis),
+            self.cell_coord(hi + pad, axis),
+        )
     }
 
     /// The bounds of the quad whose texel square is `quad.centers`.
@@ -294,7 +316,11 @@ impl<'a, F: Sdf> Prover<'a, F> {
             }
         }
         match self.material(quad, rect, far) {
-            Some(material) => Class::Solid { hi, material },
+            Some(material) => Class::Solid {
+                hi,
+                material,
+                shaded: hi > self.deep_at,
+            },
             None => Class::Uncertain,
         }
     }
@@ -393,7 +419,12 @@ type QuadSign = Option<RectSign>;
 /// The rectangle of a quad's texel square (it holds every pixel centre of the quad).
 fn quad_sign_rect(quad: &Quad) -> [f32; 4] {
     let [c0, _, _, c3] = quad.centers;
-    [c0.x.min(c3.x), c0.y.min(c3.y), c0.x.max(c3.x), c0.y.max(c3.y)]
+    [
+        c0.x.min(c3.x),
+        c0.y.min(c3.y),
+        c0.x.max(c3.x),
+        c0.y.max(c3.y),
+    ]
 }
 
 /// The four texels of one quad as the proof reads them.
@@ -438,6 +469,23 @@ struct RefineScratch {
     points: Vec<Vec2>,
     pixels: Vec<(usize, usize)>,
     samples: Vec<Sample>,
+    /// Solid blocks shaded from exact corner samples, and those samples' points.
+    deferred: Vec<Deferred>,
+    corners: Vec<Vec2>,
+    corner_samples: Vec<Sample>,
+}
+
+/// A solid block shaded from the exact samples at its four corner pixels.
+struct Deferred {
+    xs: Range<usize>,
+    /// Band-relative rows.
+    rows: Range<usize>,
+    /// The first image row.
+    y0: usize,
+    hi: f32,
+    material: Material,
+    /// Index of its first corner in `RefineScratch::corners`.
+    first: usize,
 }
 
 /// Class counts, summed over threads.
@@ -448,6 +496,7 @@ struct Counters {
     solid: AtomicU64,
     refined: AtomicU64,
     refined_pixels: AtomicU64,
+    corners: AtomicU64,
 }
 
 /// One frame's refine pass.
@@ -468,6 +517,8 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
     ) -> Result<(), TwinError> {
         scratch.points.clear();
         scratch.pixels.clear();
+        scratch.deferred.clear();
+        scratch.corners.clear();
         for columns in &self.layout.columns.runs {
             let block = Block {
                 c: columns.cell,
@@ -477,6 +528,7 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
             };
             self.quad(scratch, block, sink);
         }
+        self.draw_deferred(scratch, sink)?;
         self.evaluate(scratch, sink)
     }
 
@@ -505,7 +557,7 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
         self.count(&scratch.classes, &col_blocks, ys.len());
         let interpolated = |c: &Class| match c {
             Class::Sky { .. } => S::SKY_VALUES,
-            Class::Solid { .. } => true,
+            Class::Solid { shaded, .. } => !shaded,
             Class::Uncertain => false,
         };
         let kernel = Kernel::new(self.tex, block);
@@ -530,7 +582,8 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
                             sink.proven(x, yi, d, n, kernel.material(layout, x, y));
                         }
                         Class::Sky { .. } => {}
-                        Class::Solid { hi, material } => {
+                        Class::Solid { shaded: true, .. } => {}
+                        Class::Solid { hi, material, .. } => {
                             match self.prover.pixel_material(material, p) {
                                 Some(m) => {
                                     let d = scratch.blocks.dist[i].min(hi);
@@ -545,7 +598,104 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
                 }
             }
         }
+        self.defer(scratch, &classes, &col_blocks, &ys);
         scratch.classes = classes;
+    }
+
+    /// Queues the shaded solid blocks of a quad and the corner points they are drawn from.
+    fn defer(
+        &self,
+        scratch: &mut RefineScratch,
+        classes: &[Class],
+        col_blocks: &[Range<usize>],
+        ys: &Range<usize>,
+    ) {
+        let layout = self.layout;
+        for (i, class) in classes.iter().enumerate() {
+            let &Class::Solid {
+                hi,
+                material,
+                shaded: true,
+            } = class
+            else {
+                continue;
+            };
+            let xs = col_blocks[i % col_blocks.len()].clone();
+            let start = ys.start + (i / col_blocks.len()) * BLOCK;
+            let rows_abs = start..(start + BLOCK).min(ys.end);
+            let first = scratch.corners.len();
+            for y in [rows_abs.start, rows_abs.end - 1] {
+                for x in [xs.start, xs.end - 1] {
+                    scratch
+                        .corners
+                        .push(Vec2::new(layout.columns.world[x], layout.rows.world[y]));
+                }
+            }
+            scratch.deferred.push(Deferred {
+                xs,
+                rows: rows_abs.start - ys.start..rows_abs.end - ys.start,
+                y0: rows_abs.start,
+                hi,
+                material,
+                first,
+            });
+        }
+    }
+
+    /// Samples the deferred blocks' corners and draws the blocks by bilinear interpolation
+    /// of the exact corner distances and gradients (the distance clamped to the proof's
+    /// bound); pixels whose material lookup disagrees are queued for exact evaluation.
+    fn draw_deferred<S: Sink>(
+        &self,
+        scratch: &mut RefineScratch,
+        sink: &mut S,
+    ) -> Result<(), TwinError> {
+        let empty = Sample {
+            distance: 0.0,
+            gradient: Vec2::ZERO,
+            material: 0,
+        };
+        scratch.corner_samples.clear();
+        scratch.corner_samples.resize(scratch.corners.len(), empty);
+        for (points, out) in scratch
+            .corners
+            .chunks(BATCH)
+            .zip(scratch.corner_samples.chunks_mut(BATCH))
+        {
+            self.prover.terrain.samples(points, out)?;
+        }
+        self.counters
+            .corners
+            .fetch_add(scratch.corners.len() as u64, Ordering::Relaxed);
+        let deferred = std::mem::take(&mut scratch.deferred);
+        for b in &deferred {
+            let s: [Sample; 4] = std::array::from_fn(|k| scratch.corner_samples[b.first + k]);
+            let span = |r: &Range<usize>| (r.end - 1 - r.start).max(1) as f32;
+            let (wx, wy) = (span(&b.xs), span(&b.rows));
+            for (yi, y) in b.rows.clone().zip(b.y0..) {
+                let ty = (yi - b.rows.start) as f32 / wy;
+                for x in b.xs.clone() {
+                    let tx = (x - b.xs.start) as f32 / wx;
+                    let w = [
+                        (1.0 - tx) * (1.0 - ty),
+                        tx * (1.0 - ty),
+                        (1.0 - tx) * ty,
+                        tx * ty,
+                    ];
+                    let d: f32 = (0..4).map(|k| w[k] * s[k].distance).sum();
+                    let g: Vec2 = (0..4).map(|k| w[k] * s[k].gradient).sum();
+                    let p = Vec2::new(self.layout.columns.world[x], self.layout.rows.world[y]);
+                    match self.prover.pixel_material(b.material, p) {
+                        Some(m) => sink.proven(x, yi, d.min(b.hi), g.normalize_or_zero(), m),
+                        None => queue(scratch, p, x, yi),
+                    }
+                }
+            }
+        }
+        scratch.deferred = deferred;
+        scratch.deferred.clear();
+        scratch.corners.clear();
+        Ok(())
     }
 
     fn count(&self, classes: &[Class], col_blocks: &[Range<usize>], rows: usize) {
@@ -605,7 +755,7 @@ impl<F: Sdf + Sync> Refiner<'_, F> {
             refined_blocks: get(&c.refined),
             pixels,
             refined_pixels,
-            exact_evaluations: texels + margins + refined_pixels,
+            exact_evaluations: texels + margins + refined_pixels + get(&c.corners),
         }
     }
 }
