@@ -1,6 +1,7 @@
 //! The `refine` reconstruction against the exact render, and the proofs it rests on
 //! (per-cell slope bounds, event signs, material margins) against sampled points. A proof
 //! that fails is a bug, not noise: every check here is exact.
+#![cfg(feature = "raster")]
 
 mod common;
 

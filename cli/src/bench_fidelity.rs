@@ -489,12 +489,12 @@ fn refine_verdicts(rows: &[Row]) -> Vec<Verdict> {
                 .filter(|(_, v)| if at_least { *v < goal } else { *v > goal })
                 .map(|(s, v)| format!("{s} {v:.4}"))
                 .collect();
-            let worst = judged
-                .iter()
-                .map(|(_, v)| *v)
-                .fold(if at_least { f64::INFINITY } else { 0.0 }, |a, v| {
+            let worst = judged.iter().map(|(_, v)| *v).fold(
+                if at_least { f64::INFINITY } else { 0.0 },
+                |a, v| {
                     if at_least { a.min(v) } else { a.max(v) }
-                });
+                },
+            );
             Verdict {
                 target: format!("refine {what} on every scene"),
                 passed: (!judged.is_empty()).then_some(failing.is_empty()),
@@ -709,7 +709,7 @@ const ZOOM: u32 = 2;
 const GUTTER: u32 = 8;
 
 /// Writes `DIR/fidelity-<scene>.png`: crops of the exact render and of every method at 1/16,
-/// left to right in the order exact, bilinear, bicubic, divergence, planes.
+/// left to right in the order exact, bilinear, bicubic, divergence, planes, refine.
 fn write_pictures(scene: &Scene, dir: &Path, threads: usize) -> Result<(), String> {
     let Some(&(_, centre)) = PICTURES.iter().find(|(n, _)| *n == scene.name) else {
         return Ok(());
@@ -764,11 +764,17 @@ fn write_pictures(scene: &Scene, dir: &Path, threads: usize) -> Result<(), Strin
         &panels[0],
         &dir.join(format!("fidelity-{}-exact.png", scene.name)),
     )?;
-    let planes = panels.last().ok_or("no panels")?;
-    save(
-        planes,
-        &dir.join(format!("fidelity-{}-planes.png", scene.name)),
-    )
+    for name in ["planes", "refine"] {
+        let i = METHODS
+            .iter()
+            .position(|m| m.name == name)
+            .ok_or("no such method")?;
+        save(
+            &panels[i + 1],
+            &dir.join(format!("fidelity-{}-{name}.png", scene.name)),
+        )?;
+    }
+    Ok(())
 }
 
 fn save(image: &RgbaImage, path: &Path) -> Result<(), String> {

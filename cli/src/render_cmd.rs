@@ -278,7 +278,7 @@ fn camera(options: &Options, level: &Level) -> Result<Camera, String> {
 fn fit(min: Vec2, max: Vec2, width: u32) -> Result<Camera, String> {
     let upp = (max.x - min.x) / width.max(1) as f32;
     let height = ((max.y - min.y) / upp).round();
-    if !(height >= 1.0 && height <= 1.0e6) {
+    if !(1.0..=1.0e6).contains(&height) {
         return Err(format!(
             "a view {} x {} world units at {width} pixels wide is {height} pixels high: cannot render it",
             max.x - min.x,

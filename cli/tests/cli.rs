@@ -2,8 +2,9 @@
 //! accepts good levels and names the problem in bad ones, the demo's match replay verifies
 //! and damaged replays are refused with a message (never a panic), `replay render` writes
 //! the picture asked for, `bench field --json`, `bench sim --json` and
-//! `bench fidelity --json` print the documented keys, and `diff` exits 0, 1 or 2 as
-//! documented.
+//! `bench fidelity --json` print the documented keys, `diff` exits 0, 1 or 2 as
+//! documented, and `render` draws every mode, measures it against the exact render and
+//! refuses what it cannot draw.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -458,22 +459,131 @@ fn bench_fidelity_json_has_the_documented_keys() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let rows = json["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 2 * 4 * 4, "2 scenes x 4 methods x 4 scales");
+    assert_eq!(rows.len(), 2 * 5 * 4, "2 scenes x 5 methods x 4 scales");
     for row in rows {
-        for key in ["scene", "method", "scale", "mismatch_pct", "mean_offset_px"] {
+        for key in [
+            "scene",
+            "method",
+            "scale",
+            "mismatch_pct",
+            "material_mismatch_pct",
+            "mean_offset_px",
+        ] {
             assert!(!row[key].is_null(), "{key} in {row}");
         }
-        for key in ["solid_recall", "gap_recall", "max_offset_px"] {
+        for key in [
+            "solid_recall",
+            "gap_recall",
+            "max_offset_px",
+            "flip",
+            "recall_1px",
+        ] {
             assert!(row.get(key).is_some(), "{key} in {row}");
+        }
+        assert_eq!(row["flip"].is_null(), row["scale"] != 16, "{row}");
+        if row["method"] == "refine" {
+            assert_eq!(row["mismatch_pct"].as_f64(), Some(0.0), "{row}");
+            assert_eq!(row["material_mismatch_pct"].as_f64(), Some(0.0), "{row}");
         }
         let mismatch = row["mismatch_pct"].as_f64().unwrap();
         assert!((0.0..=100.0).contains(&mismatch), "{row}");
     }
-    let methods = ["bilinear", "bicubic", "divergence", "planes"];
+    let methods = ["bilinear", "bicubic", "divergence", "planes", "refine"];
     assert!(methods.contains(&json["best"].as_str().unwrap()), "{json}");
     let corners = rows
         .iter()
         .find(|r| r["scene"] == "corners" && r["method"] == "planes" && r["scale"] == 16)
         .unwrap();
     assert!(corners["gap_recall"].as_f64().is_some(), "{corners}");
+}
+
+fn render(args: &[&str], png: &Path) -> Output {
+    craterfield()
+        .args([
+            "render",
+            "--backend",
+            "cpu",
+            "--events",
+            "60",
+            "--seed",
+            "3",
+        ])
+        .args(args)
+        .arg("--out")
+        .arg(png)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn render_draws_every_mode_and_compares_with_the_exact_render() {
+    let dir = temp_dir("render2d");
+    let view = ["--view", "1000,500,1400,740", "--width", "240"];
+    for mode in ["refine", "planes", "divergence", "off", "exact"] {
+        let png = dir.join(format!("{mode}.png"));
+        let mut args = view.to_vec();
+        args.extend(["--mode", mode, "--json", "--compare-exact"]);
+        let out = render(&args, &png);
+        assert!(out.status.success(), "{mode}: {}", text(&out.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        for key in [
+            "mismatch_pct",
+            "material_mismatch_pct",
+            "flip",
+            "render_ms",
+            "render_ms_p99",
+        ] {
+            assert!(json[key].as_f64().is_some(), "{mode}: {key} in {json}");
+        }
+        let img = image::open(&png).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (240, 144), "{mode}");
+        let heat = dir.join(format!("{mode}-heatmap.png"));
+        assert!(heat.is_file(), "{mode}: {}", heat.display());
+        if mode == "refine" || mode == "exact" {
+            // Proven exact: the same inside/outside state and material at every pixel.
+            assert_eq!(json["mismatch_pct"].as_f64(), Some(0.0), "{json}");
+            assert_eq!(json["material_mismatch_pct"].as_f64(), Some(0.0), "{json}");
+            assert!(json["flip"].as_f64().unwrap() < 0.003, "{json}");
+        }
+        if mode == "exact" {
+            assert_eq!(json["flip"].as_f64(), Some(0.0), "{json}");
+        }
+    }
+    // The text report names the renderer and the comparison.
+    let out = render(
+        &["--width", "320", "--compare-exact"],
+        &dir.join("whole.png"),
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("inside/outside mismatch 0.0000%"),
+        "{}",
+        text(&out.stdout)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn render_refuses_views_and_options_it_cannot_draw() {
+    let dir = temp_dir("render2d-bad");
+    let png = dir.join("x.png");
+    for (args, needle) in [
+        (vec!["--scale", "3"], "--scale 3"),
+        (vec!["--mode", "sharpest"], "--mode sharpest"),
+        (vec!["--upsample", "lanczos"], "--upsample lanczos"),
+        (vec!["--view", "10,10,5,20"], "--view"),
+        (
+            vec!["--view", "0,0,1e30,1", "--width", "64"],
+            "cannot render",
+        ),
+        (vec!["--width", "100000"], "cannot render"),
+        (vec!["--width", "64", "--height", "0"], "cannot render"),
+        (vec!["--height", "100"], "--height needs --width"),
+        (vec!["--backend", "tpu"], "--backend tpu"),
+    ] {
+        let out = render(&args, &png);
+        assert_refused(&out, needle);
+    }
+    assert!(!png.exists());
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -10,8 +10,9 @@
 //! # The margin
 //!
 //! [`Terrain::material_margin`] at `p` in cell `C` returns `m >= 0` with this guarantee:
-//! every point `q` of `C` with `2 L' |q - p| < m` has the material of `p`, where `L'` is
-//! [`Terrain::proof_lipschitz`]. It is computed along the same event fold as the field:
+//! every point `q` of `C` with `2 L' |q - p| < m` has the material of `p`, where
+//! `L' = max(L, 1)` and `L` is the cell's slope bound ([`Terrain::cell_bounds`]). It is
+//! computed along the same event fold as the field:
 //! the cell's starting material is constant over `C` (margin `+inf`) or not (margin `0`);
 //! a fill of material `F` compared with the accumulated `(d, mat, m)` at `c = |p - o| - r`
 //! switches where `d - c` changes sign, a function whose slope is at most `L' + 1 <= 2 L'`:
@@ -22,6 +23,8 @@
 //! Both cases follow from "the winner stays the winner within `|d - c| / 2L'`, and the
 //! accumulated material stays within `m / 2L'`". The guarantee holds within the cell only:
 //! another cell has another event list and starting state.
+
+use std::cmp::Ordering;
 
 use glam::Vec2;
 
@@ -100,12 +103,12 @@ impl<F: Sdf> Terrain<F> {
                 // within `k` of `-below` breaks `Below`.
                 EventKind::Carve => (
                     (far <= r - above64 - slack).then_some(true),
-                    (!(near >= r - below64 + k + slack)).then_some(false),
+                    short_of(near, r - below64 + k + slack).then_some(false),
                 ),
                 // A fill holding it `-below` deep forces `Below`; one reaching within
                 // `above + k` breaks `Above`.
                 EventKind::Fill => (
-                    (!(near >= r + above64 + k + slack)).then_some(false),
+                    short_of(near, r + above64 + k + slack).then_some(false),
                     (far <= r + below64 - slack).then_some(true),
                 ),
             };
@@ -224,7 +227,12 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
-    /// The material margin at `p` (see the module doc): `+inf` where no other material can
+    /// The material margin `m` at `p`: every point `q` of `p`'s cell with
+    /// `2 max(L, 1) |q - p| < m` has `p`'s material (`L` from [`Terrain::cell_bounds`]).
+    /// Along the event fold, from `+inf` where the cell's starting material is constant: a
+    /// fill of another material that wins sets it to `d - c`, one that loses lowers it to
+    /// `c - d`, one of the same material that wins raises it to `max(d - c, m)`.
+    /// `+inf` where no other material can
     /// win anywhere in `p`'s cell, `0` where nothing is proven (outside the grid, a varying
     /// starting material, NaN).
     pub fn material_margin(&self, p: Vec2) -> f32 {
@@ -254,7 +262,8 @@ impl<F: Sdf> Terrain<F> {
             if let (EventKind::Fill, Some(r)) = (e.kind, e.radius_at(self.tick)) {
                 // `c` exactly as `apply_event` computes it, so `wins` is its decision.
                 let c = pn.minus(e.center_f32()).length().offset(-r);
-                let wins = !(d < c);
+                // `!(d < c)`, as `apply_event` decides it (NaN included).
+                let wins = d.partial_cmp(&c) != Some(Ordering::Less);
                 margin = match (wins, mat == e.material) {
                     (true, true) => (d - c).max(margin),
                     (true, false) => d - c,
@@ -312,4 +321,12 @@ fn farthest(o: [f64; 2], rect: [[f64; 2]; 2]) -> f64 {
     let dx = (o[0] - rect[0][0]).abs().max((o[0] - rect[1][0]).abs());
     let dy = (o[1] - rect[0][1]).abs().max((o[1] - rect[1][1]).abs());
     (dx * dx + dy * dy).sqrt()
+}
+
+/// `!(v >= bound)`: `v` is below `bound`, or not comparable with it (NaN proves nothing).
+fn short_of(v: f64, bound: f64) -> bool {
+    !matches!(
+        v.partial_cmp(&bound),
+        Some(Ordering::Greater | Ordering::Equal)
+    )
 }

@@ -1,24 +1,27 @@
 //! Pass 3 in mode `refine`: every `BLOCK x BLOCK` pixel block of a quad is either proven
-//! from the quad's four texels or evaluated exactly at every pixel centre.
+//! from the quad's four texels and the terrain's events, or evaluated exactly at every
+//! pixel centre. `docs/render2d-pipeline.md` ("Refine") states the proof in full.
 //!
 //! For a block whose pixel centres span the rectangle `B`, with quad texels `k = 0..3`
-//! (centres `C_k`, distances `d_k`, materials `m_k`, margins `mu_k`), the terrain's proof
-//! slope `L'` ([`Terrain::proof_lipschitz`]) and cell border jump `J`
-//! ([`Terrain::cell_border_jump`]):
+//! (centres `C_k`, distances `d_k`, materials `m_k`, margins `mu_k`), `L` and `J` the
+//! largest slope bound and border-jump allowance over the cells the quad touches
+//! ([`Terrain::cell_bounds`]):
 //!
 //! * `R_k` is the largest distance from `C_k` to a corner of `B` (the farthest point of a
-//!   rectangle from any point is a corner), `n_k` the cell borders between `C_k` and `B`,
-//!   `e_k = |d_k| / 1024 + upp / 1000` covers the `f16` rounding of `d_k` and of the `f32`
-//!   evaluations; `reach_k = L' R_k + J n_k + e_k`.
+//!   rectangle from any point is a corner); `reach_k = L R_k + J + |d_k| / 1024 + upp / 1000`
+//!   (the last two cover the `f16` rounding of `d_k` and the `f32` evaluations).
 //! * Every pixel of `B` has its exact distance in `[lo, hi]`, `lo = max_k (d_k - reach_k)`,
-//!   `hi = min_k (d_k + reach_k)`.
-//! * **Sky** when `lo >= upp / 2`: no pixel is covered, every pixel is its row's sky colour.
-//! * **Solid** when `hi <= -(outline_px + 1/2) upp` and the material is proven, by either
-//!   rule: every grid cell `B` touches has one constant material ([`Terrain::cell_material`]),
-//!   and each pixel takes its cell's; or `B` and some `C_k` lie in one cell and
-//!   `2 L' R_k < mu_k` ([`Terrain::material_margin`]), and every pixel takes `m_k`. Each pixel
-//!   is then fully covered with no outline; its depth shade and normal come from the planes
-//!   interpolant, its distance clamped to `hi`.
+//!   `hi = min_k (d_k + reach_k)`; where that decides nothing, the events of the cells `B`
+//!   touches may ([`Terrain::rect_sign`]), first for the whole quad, then for the block.
+//! * **Sky** when the distance is at least `upp / 2`: every pixel is its row's sky colour.
+//! * **Solid** when it is at most `-(outline_px + 1/2) upp` and the material is proven, by
+//!   either rule: every grid cell `B` touches has one constant material
+//!   ([`Terrain::cell_material`]), and each pixel takes its cell's; or `B` and some `C_k` lie
+//!   in one cell and `2 max(L, 1) R_k < mu_k` ([`Terrain::material_margin`]), and every pixel
+//!   takes `m_k`. Each pixel is then fully covered with no outline. Blocks deeper than the
+//!   interior depth everywhere are shaded from the planes interpolant; the others from exact
+//!   samples at their four corner pixels, interpolated bilinearly; the distance is clamped
+//!   to `hi`.
 //! * Otherwise **uncertain**: every pixel is sampled with the terrain's batch evaluator and
 //!   shaded exactly as [`crate::render2d::render_exact`] shades it.
 //!
@@ -289,11 +292,11 @@ impl<'a, F: Sdf> Prover<'a, F> {
         ];
         let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
         let mut far = [0.0f32; 4];
-        for k in 0..4 {
+        for (k, far_k) in far.iter_mut().enumerate() {
             let c = quad.centers[k];
-            far[k] = corners.iter().map(|&p| p.distance(c)).fold(0.0, f32::max);
+            *far_k = corners.iter().map(|&p| p.distance(c)).fold(0.0, f32::max);
             let d = quad.d[k];
-            let reach = bounds.lipschitz * far[k] * (1.0 + 1.0e-5)
+            let reach = bounds.lipschitz * *far_k * (1.0 + 1.0e-5)
                 + bounds.jump
                 + d.abs() / 1024.0
                 + self.upp / 1000.0;
@@ -303,7 +306,11 @@ impl<'a, F: Sdf> Prover<'a, F> {
         if lo >= self.sky_at {
             return Class::Sky { lo };
         }
-        if !(hi <= self.solid_at) {
+        let solid = matches!(
+            hi.partial_cmp(&self.solid_at),
+            Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+        );
+        if !solid {
             let whole = *quad_sign.get_or_insert_with(|| self.event_sign(quad_sign_rect(quad)));
             let sign = match whole {
                 RectSign::Unknown => self.event_sign(rect),
@@ -898,6 +905,7 @@ pub(super) fn render_refined<F: Sdf + Sync>(
 }
 
 /// Pass 3 of mode `refine` into a field image (see [`render_refined`]).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn field_refined<F: Sdf + Sync>(
     terrain: &Terrain<F>,
     lowres: &LowRes,
