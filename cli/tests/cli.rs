@@ -498,16 +498,14 @@ fn bench_fidelity_json_has_the_documented_keys() {
 }
 
 fn render(args: &[&str], png: &Path) -> Output {
+    let backend: &[&str] = if args.contains(&"--backend") {
+        &[]
+    } else {
+        &["--backend", "cpu"]
+    };
     craterfield()
-        .args([
-            "render",
-            "--backend",
-            "cpu",
-            "--events",
-            "60",
-            "--seed",
-            "3",
-        ])
+        .args(["render", "--events", "60", "--seed", "3"])
+        .args(backend)
         .args(args)
         .arg("--out")
         .arg(png)
