@@ -115,9 +115,13 @@ impl<F: Sdf> Terrain<F> {
             up = up.or(for_up);
             down = down.or(for_down);
         }
-        let start = || self.start_range(cell, min, max);
-        let up = up.unwrap_or_else(|| start().0 >= above);
-        let down = down.unwrap_or_else(|| start().1 <= below);
+        let (up, down) = match (up, down) {
+            (Some(u), Some(d)) => (u, d),
+            (u, d) => {
+                let (lo, hi) = self.start_range(cell, min, max);
+                (u.unwrap_or(lo >= above), d.unwrap_or(hi <= below))
+            }
+        };
         match (up, down) {
             (true, _) => RectSign::Above,
             (false, true) => RectSign::Below,
