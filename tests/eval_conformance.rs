@@ -450,8 +450,8 @@ fn example_levels() -> Vec<Level> {
 }
 
 fn prospero_text() -> String {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/prospero.vm");
-    std::fs::read_to_string(path).expect("the shared test input shared/data/prospero.vm")
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/prospero.vm");
+    std::fs::read_to_string(path).expect("the vendored test input tests/data/prospero.vm")
 }
 
 /// The prospero graph and a spread of its pixels (the full image is the benchmark's job).

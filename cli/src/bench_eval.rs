@@ -121,7 +121,7 @@ pub fn eval(o: Options) -> Result<ExitCode, String> {
         )?;
     }
 
-    let path = prospero.unwrap_or_else(|| PathBuf::from("../shared/data/prospero.vm"));
+    let path = prospero.unwrap_or_else(|| PathBuf::from("tests/data/prospero.vm"));
     match std::fs::read_to_string(&path) {
         _ if !wanted("prospero") => {}
         Ok(text) => {

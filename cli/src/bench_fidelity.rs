@@ -28,7 +28,7 @@ pub struct Options {
     /// Write side-by-side pictures (exact, then every method at 1/16) of a few scenes here.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// The prospero expression (default: ../shared/data/prospero.vm).
+    /// The prospero expression (default: tests/data/prospero.vm).
     #[arg(long)]
     pub prospero: Option<PathBuf>,
     /// Seed of the level's barrage.
@@ -165,7 +165,7 @@ pub fn fidelity(options: &Options) -> Result<ExitCode, String> {
     let prospero = options
         .prospero
         .clone()
-        .unwrap_or_else(|| PathBuf::from("../shared/data/prospero.vm"));
+        .unwrap_or_else(|| PathBuf::from("tests/data/prospero.vm"));
     let names = scene_names(&options.scenes)?;
     let mut report = Report {
         rows: Vec::new(),

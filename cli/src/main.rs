@@ -150,7 +150,7 @@ enum BenchCommand {
         /// Random points of the `default` workloads.
         #[arg(long, default_value_t = 1_000_000)]
         points: usize,
-        /// The prospero expression (default: ../shared/data/prospero.vm).
+        /// The prospero expression (default: tests/data/prospero.vm).
         #[arg(long)]
         prospero: Option<PathBuf>,
         /// Only workloads whose name starts with this (e.g. `prospero`).

@@ -22,12 +22,12 @@ pub fn example_levels() -> Vec<(String, Graph, Aabb)> {
         .collect()
 }
 
-/// Where the prospero expression is looked for: `CRATERFIELD_PROSPERO`, else the shared data
-/// folder next to the repository.
+/// Where the prospero expression is looked for: `CRATERFIELD_PROSPERO`, else the vendored copy
+/// under `tests/data`.
 pub fn prospero_path() -> PathBuf {
     std::env::var_os("CRATERFIELD_PROSPERO")
         .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/prospero.vm"))
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/prospero.vm"))
 }
 
 /// The prospero expression as a graph, or `None` (reported as skipped, an error under CI)
