@@ -139,7 +139,6 @@ fn direct_inputs(
     let texels = vec![super::Texel::default(); lattice.len()];
     let lowres = LowRes {
         pairs: Some(vec![[0.0; 4]; texels.len()]),
-        margins: None,
         lattice,
         texels,
         slope: 1.0,

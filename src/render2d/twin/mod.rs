@@ -67,9 +67,6 @@ pub struct LowRes {
     /// Pair values of the `planes` reconstruction, one `[right, down, diag, anti]` per
     /// texel; `None` in the other modes.
     pub pairs: Option<Vec<[f32; 4]>>,
-    /// Material margins of the `refine` mode, one per texel (see
-    /// [`crate::field2d::Terrain::material_margin`]); `None` in the other modes.
-    pub margins: Option<Vec<f32>>,
     /// How fast the field may change per world unit (see [`slope_bound`]): the `planes`
     /// interpolant is clamped to `d_k +- slope |p - C_k|` of every quad texel.
     pub slope: f32,

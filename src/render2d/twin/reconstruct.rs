@@ -175,7 +175,6 @@ mod tests {
                 texel(1.0, 1.0, 0.0),
             ],
             pairs: None,
-            margins: None,
             slope: 1.5,
         };
         reconstruct(&mut low, Reconstruction::Planes).unwrap();
@@ -205,7 +204,6 @@ mod tests {
             lattice: lattice(3, 2),
             texels: texels[..5].to_vec(),
             pairs: None,
-            margins: None,
             slope: 1.5,
         };
         assert!(matches!(

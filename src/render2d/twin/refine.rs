@@ -135,8 +135,8 @@ struct QuadBounds {
 pub(super) struct Prover<'a, F: Sdf> {
     terrain: &'a Terrain<F>,
     grid: &'a Grid,
-    /// Margins computed in pass 1, if any; else computed here on first use.
-    margins: &'a [f32],
+    /// Texel material margins, computed on first use (only solid blocks in cells of
+    /// several materials need them).
     lazy_margins: Vec<OnceLock<f32>>,
     lattice: Lattice,
     cells: Vec<OnceLock<CellInfo>>,
@@ -158,17 +158,10 @@ impl<'a, F: Sdf> Prover<'a, F> {
     fn new(terrain: &'a Terrain<F>, lowres: &'a LowRes, upp: f32, shade: &ShadeOptions) -> Self {
         let grid = terrain.grid();
         let (nx, ny) = grid.dims();
-        let margins = lowres.margins.as_deref().unwrap_or(&[]);
-        let lazy = if margins.is_empty() {
-            lowres.texels.len()
-        } else {
-            0
-        };
         Prover {
             terrain,
             grid,
-            margins,
-            lazy_margins: (0..lazy).map(|_| OnceLock::new()).collect(),
+            lazy_margins: (0..lowres.texels.len()).map(|_| OnceLock::new()).collect(),
             lattice: lowres.lattice,
             cells: (0..nx as usize * ny as usize)
                 .map(|_| OnceLock::new())
@@ -191,9 +184,6 @@ impl<'a, F: Sdf> Prover<'a, F> {
 
     /// The material margin of texel `index` (see [`Terrain::material_margin`]).
     fn margin(&self, index: usize) -> f32 {
-        if let Some(&m) = self.margins.get(index) {
-            return m;
-        }
         let Some(slot) = self.lazy_margins.get(index) else {
             return 0.0;
         };
@@ -514,7 +504,27 @@ struct Refiner<'a, F: Sdf> {
     counters: Counters,
 }
 
-impl<F: Sdf + Sync> Refiner<'_, F> {
+impl<'a, F: Sdf + Sync> Refiner<'a, F> {
+    /// The refine pass of one frame (`exact_only`: prove nothing, evaluate every block).
+    fn new(
+        terrain: &'a Terrain<F>,
+        lowres: &'a LowRes,
+        tex: &'a Textures<'a>,
+        layout: &'a Layout,
+        camera: &Camera,
+        shade: &ShadeOptions,
+        exact_only: bool,
+    ) -> Self {
+        let mut prover = Prover::new(terrain, lowres, camera.units_per_pixel, shade);
+        prover.exact_only = exact_only;
+        Refiner {
+            prover,
+            tex,
+            layout,
+            counters: Counters::default(),
+        }
+    }
+
     /// Classifies and draws the band of image rows `rows.pixels` (quad row `rows.cell`).
     fn band<S: Sink>(
         &self,
@@ -854,7 +864,7 @@ impl Sink for FieldSink<'_> {
 }
 
 /// Pass 3 of mode `refine` into an RGBA image (see the module doc). `lowres` holds the
-/// planes pair values (and the margins, when pass 1 computed them).
+/// planes pair values.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn render_refined<F: Sdf + Sync>(
     terrain: &Terrain<F>,
@@ -868,14 +878,7 @@ pub(super) fn render_refined<F: Sdf + Sync>(
     exact_only: bool,
     tint: bool,
 ) -> Result<(RgbaImage, RefineStats), TwinError> {
-    let mut prover = Prover::new(terrain, lowres, camera.units_per_pixel, shade);
-    prover.exact_only = exact_only;
-    let refiner = Refiner {
-        prover,
-        tex,
-        layout,
-        counters: Counters::default(),
-    };
+    let refiner = Refiner::new(terrain, lowres, tex, layout, camera, shade, exact_only);
     let shader = Shader::new(shade, camera.height);
     let width = camera.width as usize;
     let mut image = RgbaImage::new(camera.width, camera.height);
@@ -916,14 +919,7 @@ pub(super) fn field_refined<F: Sdf + Sync>(
     threads: usize,
     exact_only: bool,
 ) -> Result<FieldImage, TwinError> {
-    let mut prover = Prover::new(terrain, lowres, camera.units_per_pixel, shade);
-    prover.exact_only = exact_only;
-    let refiner = Refiner {
-        prover,
-        tex,
-        layout,
-        counters: Counters::default(),
-    };
+    let refiner = Refiner::new(terrain, lowres, tex, layout, camera, shade, exact_only);
     let width = camera.width as usize;
     let pixels = width * camera.height as usize;
     let mut field = FieldImage {

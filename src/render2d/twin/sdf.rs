@@ -40,7 +40,6 @@ pub fn sdf_pass<F: Sdf + Sync>(
         lattice: *lattice,
         texels,
         pairs: None,
-        margins: None,
         slope: super::slope_bound(terrain.lipschitz()),
     })
 }
