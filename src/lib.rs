@@ -5,8 +5,13 @@
 //! Everything on the collision path is bit-for-bit deterministic (see `DESIGN.md`).
 #![warn(missing_docs)]
 
+pub mod det;
+#[cfg(feature = "emit")]
 pub mod emit;
 pub mod field2d;
+#[cfg(feature = "gpu")]
+pub mod gpu;
+#[cfg(feature = "march3d")]
 pub mod march3d;
 pub mod net;
 #[cfg(feature = "raster")]

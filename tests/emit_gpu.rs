@@ -7,7 +7,7 @@ mod emit_support;
 
 use craterfield::emit::TerrainEmitter;
 use craterfield::field2d::{Aabb, Graph, Sample, Sdf};
-use craterfield::render2d::gpu::GpuContext;
+use craterfield::gpu::GpuContext;
 use emit_support::{
     Rng, every_variant_bounds, every_variant_graph, example_levels, prospero_graph,
 };

@@ -6,8 +6,10 @@ mod emit_support;
 use std::path::{Path, PathBuf};
 
 use craterfield::emit::wgsl::f32_literal;
-use craterfield::emit::{Fate, ShaderCache, TerrainEmitter};
+use craterfield::emit::{Fate, TerrainEmitter};
 use craterfield::field2d::{Aabb, Graph};
+#[cfg(feature = "gpu")]
+use craterfield::gpu::PipelineCache;
 use emit_support::{Rng, every_variant_graph, example_levels, islands_graph, prospero_graph};
 use glam::Vec2;
 use naga::valid::{Capabilities, ValidationFlags, Validator};
@@ -443,13 +445,14 @@ fn culled_children_of_the_default_level_are_above_the_band_in_the_view() {
 
 // ---- cache ------------------------------------------------------------------------------
 
+#[cfg(feature = "gpu")]
 #[test]
 fn the_cache_hits_on_an_unchanged_key_and_misses_on_a_change() {
     let graph = islands_graph();
     let emitter = TerrainEmitter::new(&graph);
-    let mut cache: ShaderCache<String> = ShaderCache::new(4);
+    let mut cache: PipelineCache<String> = PipelineCache::new(4);
     let mut compiles = 0;
-    let mut frame = |x: f32, cache: &mut ShaderCache<String>| {
+    let mut frame = |x: f32, cache: &mut PipelineCache<String>| {
         let plan = emitter.plan(Some(island_view(x)), 32.0);
         let (text, hit) = cache.get_or_insert_with(plan.key, || {
             compiles += 1;
@@ -467,9 +470,10 @@ fn the_cache_hits_on_an_unchanged_key_and_misses_on_a_change() {
     assert_eq!(compiles, 2);
 }
 
+#[cfg(feature = "gpu")]
 #[test]
 fn the_cache_evicts_the_least_recently_used_beyond_its_capacity() {
-    let mut cache: ShaderCache<u64> = ShaderCache::new(3);
+    let mut cache: PipelineCache<u64> = PipelineCache::new(3);
     for key in 0..3 {
         cache.get_or_insert_with(key, || key * 10);
     }

@@ -9,8 +9,10 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use craterfield::field2d::{Event, Graph, Level, Terrain};
-use craterfield::render2d::gpu::readback::{Pipeline, READBACK_FORMAT, render_to_image};
-use craterfield::render2d::gpu::{GpuContext, GpuError, TerrainRenderer};
+use craterfield::gpu::READBACK_FORMAT;
+use craterfield::gpu::{GpuContext, GpuError};
+use craterfield::render2d::gpu::TerrainRenderer;
+use craterfield::render2d::gpu::{Pipeline, render_to_image};
 use craterfield::render2d::twin::render_twin;
 use craterfield::render2d::{
     Camera, ExactRenderOptions, Reconstruction, RenderOptions, Scale, Upsample, render_exact,
@@ -347,7 +349,7 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
         camera(Vec2::ZERO, 1.0, 0, 64),
     ] {
         match r.prepare(&terrain, &pal, &bad) {
-            Err(GpuError::Lattice(_)) => {}
+            Err(GpuError::Camera(_)) => {}
             other => return Err(format!("bad camera {bad:?} gave {:?}", other.map(|_| ())).into()),
         }
     }

@@ -1,11 +1,11 @@
 //! The CPU sphere tracer against geometry, against itself across instruction sets, thread
 //! counts and tile sizes, and its counting mode, over-relaxation and input errors.
 
-use craterfield::march3d::cpu::{self, Rendered, TraceError, TraceOptions};
-use craterfield::march3d::plan::{
+use craterfield::emit::plan3d::{
     AoMode, Camera, Fbm, Guard, Hash, Lift, March, Material, Node, PaperShading, Plan, PointLight,
     Prim, PrimKind, Shading, ShadowMode, Shape, Sphere, TerrainPlan, WorldShading,
 };
+use craterfield::march3d::cpu::{self, Rendered, TraceError, TraceOptions};
 use craterfield::march3d::scene::rotation_degrees;
 use craterfield::march3d::simd::Isa;
 use glam::Vec3;

@@ -2,8 +2,8 @@
 //! world needs at least 5x fewer SDF evaluations per pixel than the naive emit, looks the
 //! same within the visual-diff tolerance, and every switch changes what it claims to.
 
-use craterfield::emit::world3d::{EmitOptions, Optimization, WorldEmitter};
 use craterfield::march3d::Camera;
+use craterfield::march3d::compile::{CompileOptions, Optimization, WorldCompiler};
 use craterfield::march3d::cpu::{Rendered, Stats, render_counted};
 use craterfield::march3d::scene::Scene;
 use craterfield::visdiff::{DiffOptions, compare};
@@ -11,22 +11,22 @@ use craterfield::visdiff::{DiffOptions, compare};
 const W: u32 = 128;
 const H: u32 = 72;
 
-fn forest() -> (WorldEmitter, Camera) {
+fn forest() -> (WorldCompiler, Camera) {
     let scene = Scene::builtin("forest").unwrap();
     let camera = scene.camera.camera().unwrap();
-    (WorldEmitter::new(&scene).unwrap(), camera)
+    (WorldCompiler::new(&scene).unwrap(), camera)
 }
 
-fn counted(e: &WorldEmitter, camera: &Camera, opts: &EmitOptions) -> (Rendered, Stats) {
+fn counted(e: &WorldCompiler, camera: &Camera, opts: &CompileOptions) -> (Rendered, Stats) {
     let plan = e.emit(camera, opts).unwrap();
     render_counted(&plan, camera, W, H, 0).unwrap()
 }
 
 /// The naive emit with the optimized plan's noise hash.
-fn naive_same_terrain() -> EmitOptions {
-    EmitOptions {
+fn naive_same_terrain() -> CompileOptions {
+    CompileOptions {
         enabled: vec![Optimization::DotFractHash],
-        ..EmitOptions::naive()
+        ..CompileOptions::naive()
     }
 }
 
@@ -37,8 +37,8 @@ fn image(r: &Rendered) -> image::RgbaImage {
 #[test]
 fn the_optimized_forest_needs_five_times_fewer_evaluations_and_looks_the_same() {
     let (e, camera) = forest();
-    let (_, naive) = counted(&e, &camera, &EmitOptions::naive());
-    let (all_img, all) = counted(&e, &camera, &EmitOptions::default());
+    let (_, naive) = counted(&e, &camera, &CompileOptions::naive());
+    let (all_img, all) = counted(&e, &camera, &CompileOptions::default());
     let ratio = naive.sdf_evals as f64 / all.sdf_evals as f64;
     assert!(ratio >= 5.0, "naive/all SDF evaluations = {ratio:.2}");
     // The hash defines the terrain's shape (a different noise, not an approximation of
@@ -72,7 +72,7 @@ fn the_optimized_forest_needs_five_times_fewer_evaluations_and_looks_the_same() 
 #[test]
 fn each_switch_costs_evaluations_or_steps_when_off() {
     let (e, camera) = forest();
-    let (_, all) = counted(&e, &camera, &EmitOptions::default());
+    let (_, all) = counted(&e, &camera, &CompileOptions::default());
     // The switches that only change how a value is computed (hash, normals, material IDs
     // after the march) still cost evaluations; every one is measured here.
     for opt in [
@@ -84,7 +84,7 @@ fn each_switch_costs_evaluations_or_steps_when_off() {
         Optimization::TerrainShadow,
         Optimization::AnalyticNormal,
     ] {
-        let (_, off) = counted(&e, &camera, &EmitOptions::default().without(opt));
+        let (_, off) = counted(&e, &camera, &CompileOptions::default().without(opt));
         assert!(
             off.sdf_evals > all.sdf_evals,
             "no-{}: {} evaluations, all: {}",
@@ -96,7 +96,7 @@ fn each_switch_costs_evaluations_or_steps_when_off() {
     let (_, no_lipschitz) = counted(
         &e,
         &camera,
-        &EmitOptions::default().without(Optimization::LipschitzStep),
+        &CompileOptions::default().without(Optimization::LipschitzStep),
     );
     assert!(no_lipschitz.steps > all.steps);
 }

@@ -10,12 +10,12 @@ mod march3d_plans;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use craterfield::emit::world3d::{EmitOptions, emit};
+use craterfield::emit::plan3d::Plan;
+use craterfield::gpu::GpuContext;
+use craterfield::march3d::compile::{CompileOptions, emit};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::gpu::{MarchGpuError, Marcher};
-use craterfield::march3d::plan::Plan;
 use craterfield::march3d::scene::{BUILTIN, Lighting, Scene};
-use craterfield::render2d::gpu::GpuContext;
 use craterfield::visdiff::{DiffOptions, compare};
 use image::RgbaImage;
 use libtest_mimic::{Arguments, Failed, Trial};
@@ -79,14 +79,14 @@ fn comparison_plans() -> Vec<(String, Plan, craterfield::march3d::Camera)> {
         let camera = scene.camera.camera().expect("builtin camera");
         let aspect = SIZE.0 as f32 / SIZE.1 as f32;
         let presets = match scene.lighting {
-            Lighting::Paper(_) => vec![("", EmitOptions::paper())],
+            Lighting::Paper(_) => vec![("", CompileOptions::paper())],
             Lighting::World(_) => vec![
-                ("-all", EmitOptions::default()),
-                ("-naive", EmitOptions::naive()),
+                ("-all", CompileOptions::default()),
+                ("-naive", CompileOptions::naive()),
             ],
         };
         for (suffix, opts) in presets {
-            let opts = EmitOptions { aspect, ..opts };
+            let opts = CompileOptions { aspect, ..opts };
             let plan = emit(&scene, &camera, &opts).expect("emit");
             out.push((format!("{name}{suffix}"), plan, camera));
         }

@@ -6,9 +6,9 @@ mod march3d_plans;
 use std::path::{Path, PathBuf};
 
 use craterfield::emit::codegen3d::{Codegen3dError, march_wgsl};
-use craterfield::emit::world3d::{EmitOptions, Optimization, emit};
+use craterfield::emit::plan3d::{Lift, Shape};
 use craterfield::march3d::Plan;
-use craterfield::march3d::plan::{Lift, Shape};
+use craterfield::march3d::compile::{CompileOptions, Optimization, emit};
 use craterfield::march3d::scene::{BUILTIN, Lighting, Scene};
 use march3d_plans::{WorldSwitches, all_plans, scene0, world};
 use naga::valid::{Capabilities, ValidationFlags, Validator};
@@ -66,7 +66,7 @@ fn every_variant_of_each_node_kind_validates() {
         match &mut node.shape {
             Shape::Blend { k, .. } => *k = 0.0,
             Shape::Rows { part, .. } => {
-                if let craterfield::march3d::plan::PrimKind::Capsule { a, b, .. } = &mut part.kind {
+                if let craterfield::emit::plan3d::PrimKind::Capsule { a, b, .. } = &mut part.kind {
                     *b = *a;
                 }
             }
@@ -204,9 +204,9 @@ fn builtin_plan(name: &str, naive: bool) -> Plan {
     let scene = Scene::builtin(name).unwrap();
     let camera = scene.camera.camera().unwrap();
     let opts = match (&scene.lighting, naive) {
-        (Lighting::Paper(_), _) => EmitOptions::paper(),
-        (Lighting::World(_), false) => EmitOptions::default(),
-        (Lighting::World(_), true) => EmitOptions::naive(),
+        (Lighting::Paper(_), _) => CompileOptions::paper(),
+        (Lighting::World(_), false) => CompileOptions::default(),
+        (Lighting::World(_), true) => CompileOptions::naive(),
     };
     emit(&scene, &camera, &opts).unwrap()
 }
@@ -221,7 +221,7 @@ fn every_builtin_scene_validates_with_every_optimization_switched_off_in_turn() 
         let scene = Scene::builtin(name).unwrap();
         let camera = scene.camera.camera().unwrap();
         for o in Optimization::ALL {
-            let plan = emit(&scene, &camera, &EmitOptions::default().without(o)).unwrap();
+            let plan = emit(&scene, &camera, &CompileOptions::default().without(o)).unwrap();
             validate(
                 &format!("{name} no-{}", o.name()),
                 &march_wgsl(&plan).unwrap(),

@@ -6,9 +6,9 @@ use common::Rng;
 
 use std::time::Instant;
 
+use craterfield::det::quant::FIXED_MAX;
 use craterfield::field2d::Level;
 use craterfield::field2d::event::{Event, EventKind};
-use craterfield::field2d::quant::FIXED_MAX;
 use craterfield::net::codec::{DecodeLimits, crc32};
 use craterfield::net::error::{DecodeError, DecodeErrorKind};
 use craterfield::net::replay::{self, Recorder, Replay, VerifyError};

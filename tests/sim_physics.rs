@@ -135,7 +135,7 @@ fn fast_projectiles_never_pass_a_one_unit_wall() {
     for i in 0..2000 {
         let y = 150.0 + (i % 97) as f32 * 9.3;
         let angle = ((i * 37) % 140) as f32 - 70.0;
-        let (s, c) = craterfield::field2d::detmath::sin_cos_deg(angle);
+        let (s, c) = craterfield::det::math::sin_cos_deg(angle);
         let len = [max_step, 4.0 * max_step, 3000.0][i % 3];
         let from = Vec2::new(
             1000.0 - 0.5 - 2.0 - (i % 13) as f32 * 0.37 - c * len * 0.5,

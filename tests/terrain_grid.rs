@@ -1,7 +1,7 @@
 //! The explosion grid agrees with the brute-force field: bit for bit without bricks, within
 //! the documented bound with bricks; bad events change nothing; costs stay bounded.
 
-use craterfield::field2d::detmath::{Dual, Num, V2};
+use craterfield::det::math::{Dual, Num, V2};
 use craterfield::field2d::{
     CellState, Event, MaterialSource, Sample, Sdf, Terrain, TerrainOptions,
 };
@@ -180,7 +180,7 @@ fn query_points(t: &Terrain<TestBase>, random: &[(f32, f32)]) -> Vec<Vec2> {
         pts.push(c + Vec2::new(-0.7 * r, 0.7 * r));
         // Just inside the disc edge in 8 directions (where a wrongly dropped event shows).
         for k in 0..8 {
-            let (sn, cs) = craterfield::field2d::detmath::sin_cos_deg(k as f32 * 45.0 + 10.0);
+            let (sn, cs) = craterfield::det::math::sin_cos_deg(k as f32 * 45.0 + 10.0);
             pts.push(c + Vec2::new(cs, sn) * (r - 0.5));
         }
         let corner = ((c - g.origin()) / g.cell_size()).round() * g.cell_size() + g.origin();
@@ -652,7 +652,7 @@ proptest! {
         }
         for e in t.events().to_vec() {
             for k in 0..32 {
-                let (sn, cs) = craterfield::field2d::detmath::sin_cos_deg(k as f32 * 11.25 + 3.0);
+                let (sn, cs) = craterfield::det::math::sin_cos_deg(k as f32 * 11.25 + 3.0);
                 for dr in [-1.5f32, -0.5, -0.1, 0.1, 0.7] {
                     let p = e.center_f32() + Vec2::new(cs, sn) * (e.radius_f32() + dr);
                     assert_same(t.sample(p), t.sample_brute_force(p), p);

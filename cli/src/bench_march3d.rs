@@ -12,7 +12,7 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
-use craterfield::emit::world3d::{EmitOptions, Optimization};
+use craterfield::march3d::compile::{CompileOptions, Optimization};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::scene::Scene;
 use craterfield::march3d::simd::Isa;
@@ -128,7 +128,7 @@ fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, Str
     let mut rows = Vec::new();
     for name in ["scene0", "mandelbulb"] {
         let scene = Scene::builtin(name).map_err(|e| e.to_string())?;
-        let (plan, cam) = plan_for(&scene, &EmitOptions::paper(), size)?;
+        let (plan, cam) = plan_for(&scene, &CompileOptions::paper(), size)?;
         let (_, stats) = cpu::render_counted(&plan, &cam, size.0, size.1, all_threads)
             .map_err(|e| e.to_string())?;
         let gflop = stats.flops as f64 * 1e-9;
@@ -169,12 +169,12 @@ fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, Str
 }
 
 struct Gpu {
-    ctx: craterfield::render2d::gpu::GpuContext,
+    ctx: craterfield::gpu::GpuContext,
     marcher: craterfield::march3d::gpu::Marcher,
 }
 
 fn gpu() -> Result<Gpu, String> {
-    let ctx = craterfield::render2d::gpu::GpuContext::new().map_err(|e| e.to_string())?;
+    let ctx = craterfield::gpu::GpuContext::new().map_err(|e| e.to_string())?;
     let marcher = craterfield::march3d::gpu::Marcher::new(&ctx.device, &ctx.queue)
         .map_err(|e| e.to_string())?;
     Ok(Gpu { ctx, marcher })
@@ -188,13 +188,13 @@ fn emitter_rows(
     let scene = Scene::builtin("forest").map_err(|e| e.to_string())?;
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut configs = vec![
-        ("naive".to_string(), EmitOptions::naive()),
-        ("all".to_string(), EmitOptions::default()),
+        ("naive".to_string(), CompileOptions::naive()),
+        ("all".to_string(), CompileOptions::default()),
     ];
     for opt in Optimization::ALL {
         configs.push((
             format!("no-{}", opt.name()),
-            EmitOptions::default().without(opt),
+            CompileOptions::default().without(opt),
         ));
     }
     let mut rows = Vec::new();
@@ -237,9 +237,9 @@ fn emitter_rows(
     }
     // The hash defines the terrain's shape (a different noise, not an approximation of
     // it), so the optimized picture is compared with the naive emit of the same terrain.
-    let reference = EmitOptions {
+    let reference = CompileOptions {
         enabled: vec![Optimization::DotFractHash],
-        ..EmitOptions::naive()
+        ..CompileOptions::naive()
     };
     let (plan, cam) = plan_for(&scene, &reference, size)?;
     let (naive, _) =

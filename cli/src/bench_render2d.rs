@@ -8,9 +8,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use craterfield::field2d::{Graph, Level, Terrain};
-use craterfield::render2d::gpu::readback::Offscreen;
-use craterfield::render2d::gpu::timing::Timestamps;
-use craterfield::render2d::gpu::{GpuContext, GpuError, TerrainRenderer};
+use craterfield::gpu::{GpuContext, GpuError, Offscreen, READBACK_FORMAT, Timestamps};
+use craterfield::render2d::gpu::TerrainRenderer;
 use craterfield::render2d::twin::{render_direct, render_refine, render_twin};
 use craterfield::render2d::{Camera, Reconstruction, RefineStats, RenderOptions, Scale, Upsample};
 use glam::Vec2;
@@ -149,7 +148,7 @@ fn gpu_rows(
     frames: u32,
 ) -> Result<Vec<Row>, GpuError> {
     let target = Offscreen::new(&ctx.device, camera.width, camera.height)?;
-    let format = craterfield::render2d::gpu::readback::READBACK_FORMAT;
+    let format = READBACK_FORMAT;
     let mut rows = Vec::new();
     let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, format, RenderOptions::default())?;
     r.prepare(terrain, palette, camera)?;

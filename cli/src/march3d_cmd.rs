@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use craterfield::emit::world3d::{EmitOptions, Optimization, WorldEmitter};
+use craterfield::emit::plan3d::Shading;
+use craterfield::march3d::compile::{CompileOptions, Optimization, WorldCompiler};
 use craterfield::march3d::cpu::{self, TraceOptions};
-use craterfield::march3d::plan::Shading;
 use craterfield::march3d::scene::Scene;
 use craterfield::march3d::simd::Isa;
 use craterfield::march3d::{Camera, Plan};
@@ -66,17 +66,17 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 /// The emit options of a preset name for `scene`.
-pub fn preset(scene: &Scene, name: Option<&str>, off: &[String]) -> Result<EmitOptions, String> {
+pub fn preset(scene: &Scene, name: Option<&str>, off: &[String]) -> Result<CompileOptions, String> {
     let paper_lit = matches!(
         scene.lighting,
         craterfield::march3d::scene::Lighting::Paper(_)
     );
     let mut opts = match name {
-        Some("paper") => EmitOptions::paper(),
-        Some("all") => EmitOptions::default(),
-        Some("naive") => EmitOptions::naive(),
-        None if paper_lit => EmitOptions::paper(),
-        None => EmitOptions::default(),
+        Some("paper") => CompileOptions::paper(),
+        Some("all") => CompileOptions::default(),
+        Some("naive") => CompileOptions::naive(),
+        None if paper_lit => CompileOptions::paper(),
+        None => CompileOptions::default(),
         Some(other) => return Err(format!("unknown preset `{other}` (paper, all, naive)")),
     };
     for name in off {
@@ -98,13 +98,13 @@ pub fn preset(scene: &Scene, name: Option<&str>, off: &[String]) -> Result<EmitO
 /// The scene's plan and camera for an image of `size`.
 pub fn plan_for(
     scene: &Scene,
-    opts: &EmitOptions,
+    opts: &CompileOptions,
     size: (u32, u32),
 ) -> Result<(Plan, Camera), String> {
     let camera = scene.camera.camera().map_err(|e| e.to_string())?;
     let mut opts = opts.clone();
     opts.aspect = size.0 as f32 / size.1 as f32;
-    let emitter = WorldEmitter::new(scene).map_err(|e| e.to_string())?;
+    let emitter = WorldCompiler::new(scene).map_err(|e| e.to_string())?;
     let plan = emitter.emit(&camera, &opts).map_err(|e| e.to_string())?;
     Ok((plan, camera))
 }
@@ -188,8 +188,8 @@ fn run_inner(o: &Options) -> Result<(), String> {
 }
 
 fn gpu_render(plan: &Plan, camera: &Camera, size: (u32, u32)) -> Result<(Vec<u8>, String), String> {
+    use craterfield::gpu::GpuContext;
     use craterfield::march3d::gpu::Marcher;
-    use craterfield::render2d::gpu::GpuContext;
     let ctx = GpuContext::new().map_err(|e| e.to_string())?;
     let mut marcher = Marcher::new(&ctx.device, &ctx.queue).map_err(|e| e.to_string())?;
     let (rgba, ms) = marcher

@@ -9,8 +9,10 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use craterfield::field2d::{Graph, Level, Terrain};
-use craterfield::render2d::gpu::readback::{Pipeline, READBACK_FORMAT, render_to_image};
-use craterfield::render2d::gpu::{GpuContext, TerrainRenderer};
+use craterfield::gpu::GpuContext;
+use craterfield::gpu::READBACK_FORMAT;
+use craterfield::render2d::gpu::TerrainRenderer;
+use craterfield::render2d::gpu::{Pipeline, render_to_image};
 use craterfield::render2d::lattice::check_camera;
 use craterfield::render2d::twin::{exact_field, render_direct, render_refine_overlay};
 use craterfield::render2d::{

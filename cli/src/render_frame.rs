@@ -2,8 +2,10 @@
 //! the CPU twin of the same pipeline otherwise, saying which.
 
 use craterfield::field2d::{Graph, Terrain};
-use craterfield::render2d::gpu::readback::{Pipeline, READBACK_FORMAT, render_to_image};
-use craterfield::render2d::gpu::{GpuContext, TerrainRenderer};
+use craterfield::gpu::GpuContext;
+use craterfield::gpu::READBACK_FORMAT;
+use craterfield::render2d::gpu::TerrainRenderer;
+use craterfield::render2d::gpu::{Pipeline, render_to_image};
 use craterfield::render2d::twin::render_twin;
 use craterfield::render2d::{Camera, RenderOptions};
 use image::RgbaImage;

@@ -14,7 +14,7 @@ use glam::{Mat3, Vec3};
 use thiserror::Error;
 
 use super::wgsl::{NONFINITE_HELPER, f32_expr, f32_literal, u32_literal};
-use crate::march3d::plan::{
+use crate::emit::plan3d::{
     AoMode, EARLY_OUT_MARGIN, Guard, Hash, Lift, Node, Plan, Prim, PrimKind, SKY, Shading,
     ShadowMode, Shape, TerrainPlan,
 };
@@ -22,7 +22,7 @@ use crate::march3d::plan::{
 /// The hand-written half of the module.
 pub const MARCH3D_WGSL: &str = include_str!("../../shaders/march3d.wgsl");
 
-/// Most octaves of a terrain's FBM ([`Fbm`](crate::march3d::plan::Fbm) documents 1..=12).
+/// Most octaves of a terrain's FBM ([`Fbm`](crate::emit::plan3d::Fbm) documents 1..=12).
 pub const MAX_OCTAVES: u32 = 12;
 
 /// Why a plan cannot be turned into WGSL.
@@ -573,7 +573,7 @@ fn shape_code(shape: &Shape) -> String {
         Shape::Prim(prim) => format!("    return {};\n", prim_expr(prim, "p")),
         Shape::Blend { k, parts } => blend_code(*k, parts),
         Shape::Displaced { prim, amp, freq } => {
-            let scale = 1.0 / (1.0 + amp * freq * crate::march3d::plan::VALUE_NOISE3_SLOPE);
+            let scale = 1.0 / (1.0 + amp * freq * crate::emit::plan3d::VALUE_NOISE3_SLOPE);
             format!(
                 "    return ({} + {} * (noise3(p * {}) - 0.5)) * {};\n",
                 prim_expr(prim, "p"),

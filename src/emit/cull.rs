@@ -101,7 +101,7 @@ pub enum Fate {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CullPlan {
     /// Hash of the graph's fingerprint and every decision: equal keys give byte-identical
-    /// shader text, so it keys a [`ShaderCache`](super::ShaderCache).
+    /// shader text, so it keys a `gpu::PipelineCache`.
     pub key: u64,
     /// Nodes the planned shader evaluates.
     pub kept: usize,

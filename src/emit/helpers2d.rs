@@ -6,7 +6,7 @@
 //! compare values and carry the chosen operand's gradient, as the CPU `Dual` does. Only the
 //! helpers an emitted module calls are included ([`used_helpers`]).
 
-use crate::field2d::detmath::TAU;
+use crate::det::math::TAU;
 use crate::field2d::primitives::ELLIPSE_ITERATIONS;
 
 use super::wgsl::{f32_expr, f32_literal, u32_literal};

@@ -13,7 +13,7 @@
 //! [`TerrainEmitter::plan`] culls the graph to a view ([`super::cull`]);
 //! [`TerrainEmitter::emit`] writes the module for a plan, deterministically: the same plan
 //! gives byte-identical text, and [`CullPlan::key`] names that text for a
-//! [`ShaderCache`](super::ShaderCache).
+//! `gpu::PipelineCache`.
 
 use crate::field2d::{Aabb, Graph};
 

@@ -4,7 +4,7 @@
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
-use super::detmath::{max, min};
+use crate::det::math::{max, min};
 
 /// An axis-aligned box `min ..= max`; components may be infinite. Empty when `min > max` on
 /// some axis.

@@ -7,12 +7,12 @@
 
 use glam::Vec2;
 
-use super::detmath::{Dual, Num, V2, nmax};
 use super::graph::{Graph, NodeId, Op, Repeat};
 use super::node::Axis;
 use super::noise::value_noise;
 use super::primitives as prim;
 use super::sdf::{MaterialId, Sample, Sdf};
+use crate::det::math::{Dual, Num, V2, nmax};
 
 impl Graph {
     /// Distance of one node of the graph (for tests and tools; [`Sdf::distance`] is the root).
@@ -132,8 +132,8 @@ impl Graph {
                 let t = p.dot_c(*k).offset(*phase);
                 let tv = t.value();
                 let s = t.chain(
-                    super::detmath::sin_turns(tv),
-                    super::detmath::TAU * super::detmath::cos_turns(tv),
+                    crate::det::math::sin_turns(tv),
+                    crate::det::math::TAU * crate::det::math::cos_turns(tv),
                 );
                 (d + s.scale(*amplitude), m)
             }

@@ -1,7 +1,7 @@
 //! Destruction events: carved and filled circles in fixed point, validated on construction.
 //!
 //! An [`Event`] is plain data (serializable, replayable). All lengths are fixed point
-//! ([`crate::field2d::quant`], 1/256 world unit), so replays reproduce the same bits. The
+//! ([`crate::det::quant`], 1/256 world unit), so replays reproduce the same bits. The
 //! constructors convert from world units and reject NaN, infinities, non-positive radii and
 //! out-of-range values with an error naming the field and the value.
 
@@ -9,8 +9,8 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::quant::{self, QuantError};
 use super::sdf::MaterialId;
+use crate::det::quant::{self, QuantError};
 
 /// What an event does to the terrain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]

@@ -12,12 +12,12 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
 use super::aabb::Aabb;
-use super::detmath::{self, TAU, sin_cos_deg};
 use super::error::LevelError;
 use super::node::{Axis, Node, P2};
 use super::noise::NOISE_LIPSCHITZ;
 use super::sdf::MaterialId;
 use super::tape::Program;
+use crate::det::math::{self, TAU, sin_cos_deg};
 
 /// Index of a node in a compiled [`Graph`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -600,9 +600,7 @@ impl Compiler<'_> {
                     .windows(2)
                     .map(|w| 1.0 / (w[1] - w[0]).length_squared())
                     .collect();
-                let top = pts
-                    .iter()
-                    .fold(f32::NEG_INFINITY, |m, p| detmath::max(m, p.y));
+                let top = pts.iter().fold(f32::NEG_INFINITY, |m, p| math::max(m, p.y));
                 let bounds = Aabb::new(
                     Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY),
                     Vec2::new(f32::INFINITY, top),
@@ -1083,7 +1081,7 @@ impl Compiler<'_> {
             }
             guard_c[gi] = (bmin + bmax) * 0.5;
             guard_h[gi] = (bmax - bmin) * 0.5;
-            cap = detmath::min(cap, p * 0.5);
+            cap = math::min(cap, p * 0.5);
         }
         let mut bounds = b;
         for axis in 0..2 {
@@ -1101,7 +1099,7 @@ impl Compiler<'_> {
             .product();
         let info = NodeInfo {
             exactness: Exactness::Bound,
-            lipschitz: detmath::max(ci.lipschitz, 1.0),
+            lipschitz: math::max(ci.lipschitz, 1.0),
             bounds,
             cost: instances * (ci.cost + 1),
         };
@@ -1188,10 +1186,7 @@ fn combine(infos: &[NodeInfo], bounds: Aabb, extra_lipschitz: f32) -> NodeInfo {
     } else {
         Exactness::Bound
     };
-    let lipschitz = infos
-        .iter()
-        .fold(0.0f32, |m, i| detmath::max(m, i.lipschitz))
-        + extra_lipschitz;
+    let lipschitz = infos.iter().fold(0.0f32, |m, i| math::max(m, i.lipschitz)) + extra_lipschitz;
     let cost = infos.iter().map(|i| i.cost).sum::<u64>() + infos.len() as u64;
     NodeInfo {
         exactness,

@@ -11,9 +11,9 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::detmath::{Num, V2, nclamp};
 use super::sdf::MaterialId;
 use super::terrain::journal::{Entry, Journal};
+use crate::det::math::{Num, V2, nclamp};
 
 /// Most cells a grid may have, so that memory stays bounded.
 pub const MAX_CELLS: u64 = 4_000_000;

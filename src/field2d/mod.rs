@@ -2,7 +2,7 @@
 
 pub mod aabb;
 pub mod contour;
-pub mod detmath;
+
 pub mod error;
 pub mod eval;
 pub mod event;
@@ -16,13 +16,14 @@ pub mod mesh;
 pub mod node;
 pub mod noise;
 pub mod primitives;
-pub mod quant;
+
 pub mod query;
 pub mod sdf;
 pub mod simd;
 pub mod tape;
 pub mod terrain;
 
+pub use crate::det::quant::{FIXED_ONE, QuantError};
 pub use aabb::Aabb;
 pub use error::LevelError;
 pub use event::{Event, EventError, EventKind};
@@ -30,6 +31,5 @@ pub use graph::{Exactness, Graph, GraphLimits, NodeId, NodeInfo};
 pub use grid::{CellState, GridStats, MaterialSource};
 pub use level::{Level, LevelFile, MaterialDef, WorldBounds};
 pub use node::{Axis, Node};
-pub use quant::{FIXED_ONE, QuantError};
 pub use sdf::{MaterialId, Sample, Sdf};
 pub use terrain::{Terrain, TerrainError, TerrainOptions};

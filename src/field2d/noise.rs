@@ -5,7 +5,7 @@
 //! Lattice values are in [-1, 1); the interpolant uses the cubic fade `3t² - 2t³`, so the
 //! noise is C1 and its gradient is bounded by [`NOISE_LIPSCHITZ`].
 
-use super::detmath::Num;
+use crate::det::math::Num;
 
 /// Bound on |∇ noise| for unit wavelength: per axis `max fade' * max value jump = 1.5 * 2`,
 /// so `3 * sqrt(2) = 4.243`, rounded up.
@@ -61,7 +61,7 @@ fn fade<N: Num>(t: N) -> N {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::field2d::detmath::Dual;
+    use crate::det::math::Dual;
     use glam::Vec2;
 
     #[test]

@@ -1,13 +1,13 @@
 //! Distance formulas of the primitives, generic over [`Num`] so one formula gives the
-//! distance (`f32`) and the distance with its analytic gradient ([`Dual`](super::detmath::Dual)).
+//! distance (`f32`) and the distance with its analytic gradient ([`Dual`](crate::det::math::Dual)).
 //!
 //! Each function takes the query point already relative to nothing in particular (world or
 //! local space of the node) and constants precomputed by the compiler. Only deterministic
-//! operations are used (see [`super::detmath`]).
+//! operations are used (see [`crate::det::math`]).
 
 use glam::Vec2;
 
-use super::detmath::{self, Num, V2, nclamp, nmax, nmin};
+use crate::det::math::{self, Num, V2, nclamp, nmax, nmin};
 
 /// Disc of radius `r` around `c`.
 #[inline]
@@ -121,8 +121,8 @@ fn ellipse_closest_first_quadrant(p: Vec2, r: Vec2) -> Vec2 {
         let rl = (rx * rx + ry * ry).sqrt();
         let ql = (qx * qx + qy * qy).sqrt();
         if ql > 0.0 {
-            tx = detmath::clamp((qx * rl / ql + ex) / a, 0.0, 1.0);
-            ty = detmath::clamp((qy * rl / ql + ey) / b, 0.0, 1.0);
+            tx = math::clamp((qx * rl / ql + ex) / a, 0.0, 1.0);
+            ty = math::clamp((qy * rl / ql + ey) / b, 0.0, 1.0);
         }
         let t = (tx * tx + ty * ty).sqrt();
         if t > 0.0 {

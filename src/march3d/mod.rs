@@ -2,21 +2,22 @@
 //! GPU raymarcher runs the same emitted form as WGSL.
 //!
 //! * [`scene`]: RON scene files, their validation, the builtin scenes.
-//! * [`plan`]: the emitted world for one camera, the contract both renderers execute
-//!   (built by `emit::world3d`).
+//! * [`compile`]: a scene and a camera to a [`Plan`] (culling, LOD, step tiers, baking and
+//!   the shader-side switches); the plan itself, the contract both renderers execute, is
+//!   [`crate::emit::plan3d`], and [`crate::emit::codegen3d`] turns it into WGSL.
 //! * [`noise`]: lattice hashes, value noise and FBM with analytic gradients.
 //! * [`cpu`]: the SIMD sphere tracer and its counting mode.
 //! * `gpu` (feature `gpu`): the raymarcher running the plan's emitted WGSL.
 //! * [`simd`]: lane primitives per instruction set (AVX2+FMA, NEON, scalar, counting).
 //! * [`math`]: polynomial `exp`, `log`, `sin`, `cos` over those lanes.
 
+pub mod compile;
 pub mod cpu;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod math;
 pub mod noise;
-pub mod plan;
 pub mod scene;
 pub mod simd;
 
-pub use plan::{Camera, Plan};
+pub use crate::emit::plan3d::{Camera, Plan};

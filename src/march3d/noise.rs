@@ -10,9 +10,9 @@ use glam::Vec2;
 use thiserror::Error;
 
 use super::math;
-use super::plan::{Fbm, Hash};
 use super::simd::Pack;
 use super::simd::scalar::Scalar;
+use crate::emit::plan3d::{Fbm, Hash};
 
 /// The most octaves an [`Fbm`] may have.
 pub const MAX_OCTAVES: u32 = 12;

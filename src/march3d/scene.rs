@@ -2,8 +2,8 @@
 //! settings, an optional FBM heightfield terrain, the materials and the objects; their
 //! validation; and the builtin scenes (`scenes/*.ron`).
 //!
-//! A scene is what a user writes. The emitter (`emit::world3d`) turns it, for one camera,
-//! into a [`Plan`](super::plan::Plan), the form both renderers execute.
+//! A scene is what a user writes. The emitter (`march3d::compile`) turns it, for one camera,
+//! into a [`Plan`](crate::emit::plan3d::Plan), the form both renderers execute.
 //!
 //! ```
 //! use craterfield::march3d::scene::Scene;
@@ -23,7 +23,7 @@ use glam::{Mat3, Vec3};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::plan::{Camera, Fbm, PointLight, PrimKind};
+use crate::emit::plan3d::{Camera, Fbm, PointLight, PrimKind};
 
 /// Largest accepted scene file.
 pub const MAX_SCENE_BYTES: usize = 4 * 1024 * 1024;

@@ -46,8 +46,8 @@ use std::collections::HashMap;
 
 use super::codec::{self, DecodeLimits, Reader, Writer};
 use super::error::{DecodeError, DecodeErrorKind, EncodeError};
+use crate::det::quant::FIXED_MAX;
 use crate::field2d::event::{Event, EventKind};
-use crate::field2d::quant::FIXED_MAX;
 use crate::field2d::{Sdf, Terrain};
 
 /// The message format version this build writes and reads.

@@ -7,7 +7,7 @@
 
 use glam::Vec2;
 
-use crate::field2d::detmath::{clamp, max, min};
+use crate::det::math::{clamp, max, min};
 
 use super::body::Body;
 

@@ -11,8 +11,8 @@
 
 use glam::Vec2;
 
+use crate::det::math::{clamp, max, min};
 use crate::field2d::Sample;
-use crate::field2d::detmath::{clamp, max, min};
 
 use super::body::Body;
 

@@ -1,13 +1,13 @@
 //! Match settings: every number the simulation depends on, as integers.
 //!
 //! Settings travel in replay headers and between peers, so (like events) they are fixed
-//! point ([`crate::field2d::quant`], 1/256 world unit) and convert exactly to `f32` on
+//! point ([`crate::det::quant`], 1/256 world unit) and convert exactly to `f32` on
 //! every machine. Speeds are world units per second, accelerations units per second².
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::field2d::quant::{self, FIXED_MAX, FIXED_ONE};
+use crate::det::quant::{self, FIXED_MAX, FIXED_ONE};
 
 /// A fixed-point number (1/256 unit) as settings store it.
 pub type Fixed = i32;

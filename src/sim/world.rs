@@ -12,7 +12,7 @@ use std::collections::VecDeque;
 use glam::Vec2;
 use thiserror::Error;
 
-use crate::field2d::detmath::{cos_turns, sin_turns};
+use crate::det::math::{cos_turns, sin_turns};
 use crate::field2d::event::{Event, EventKind};
 use crate::field2d::simd::{Backend, BackendError};
 use crate::field2d::tape::EvalError;
@@ -666,7 +666,7 @@ impl World {
     fn blast_event(&self, blast: &Blast) -> Option<Event> {
         let w = &blast.weapon;
         let snap = |v: f32| -> Option<i32> {
-            let fixed = crate::field2d::quant::from_f32(v).ok()?;
+            let fixed = crate::det::quant::from_f32(v).ok()?;
             Some((fixed + EVENT_CENTER_STEP / 2).div_euclid(EVENT_CENTER_STEP) * EVENT_CENTER_STEP)
         };
         Some(Event {

@@ -6,7 +6,7 @@ use std::cell::RefCell;
 use glam::Vec2;
 
 use super::{Dv, Fv, run_tape};
-use crate::field2d::detmath::Dual;
+use crate::det::math::Dual;
 use crate::field2d::sdf::MaterialId;
 use crate::field2d::simd::scalar::Scalar;
 use crate::field2d::tape::{MatOut, Tape};

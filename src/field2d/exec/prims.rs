@@ -1,13 +1,13 @@
 //! The coarse instructions on lanes: primitives, noise, the wave polynomial and the smooth
 //! operators, each the reference formula of [`crate::field2d::primitives`],
-//! [`crate::field2d::noise`] and [`crate::field2d::detmath`] with branches turned into
+//! [`crate::field2d::noise`] and [`crate::det::math`] with branches turned into
 //! selects (both sides computed, the lane's side kept) and data-dependent loops run over the
 //! union of the lanes' ranges with the lanes outside masked off.
 
 use glam::Vec2;
 
 use super::value::{P2, Val, clamp};
-use crate::field2d::detmath::TAU;
+use crate::det::math::TAU;
 use crate::field2d::simd::Lanes;
 
 /// Parameter reader over a tape's parameter words.

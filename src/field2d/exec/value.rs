@@ -1,6 +1,6 @@
 //! The numbers the interpreter runs on: a register of lanes as a plain value ([`Fv`],
 //! distance mode) or as a dual number ([`Dv`], distance and gradient), mirroring
-//! [`crate::field2d::detmath::Num`] for `f32` and `Dual` operation for operation, so each
+//! [`crate::det::math::Num`] for `f32` and `Dual` operation for operation, so each
 //! lane computes the reference's bits.
 
 use crate::field2d::simd::Lanes;

@@ -4,7 +4,7 @@
 //! Every query here is on the network-synced collision path, so it obeys the determinism
 //! contract: only `+ - * /`, `sqrt`, comparisons, sign operations and selects, in a fixed
 //! order, with fixed (or deterministically data-dependent) iteration counts. No FMA, no libm,
-//! no `f32::min`/`f32::max` (see [`detmath`](crate::field2d::detmath)).
+//! no `f32::min`/`f32::max` (see [`detmath`](crate::det::math)).
 //!
 //! # Fields that are bounds
 //!
@@ -201,7 +201,7 @@ pub(crate) fn normalize(v: Vec2) -> Option<Vec2> {
     if !(v.x.is_finite() && v.y.is_finite()) {
         return None;
     }
-    let m = crate::field2d::detmath::max(v.x.abs(), v.y.abs());
+    let m = crate::det::math::max(v.x.abs(), v.y.abs());
     if m <= 0.0 {
         return None;
     }
@@ -212,7 +212,7 @@ pub(crate) fn normalize(v: Vec2) -> Option<Vec2> {
 
 /// Length of `v` without overflow for finite `v` (`inf` only if the length itself overflows).
 pub(crate) fn length(v: Vec2) -> f32 {
-    let m = crate::field2d::detmath::max(v.x.abs(), v.y.abs());
+    let m = crate::det::math::max(v.x.abs(), v.y.abs());
     if m <= 0.0 {
         return 0.0;
     }

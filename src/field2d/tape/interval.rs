@@ -264,8 +264,8 @@ mod tests {
             assert!(within(Range::sqrt(a), x.sqrt()));
             assert!(within(Range::abs(a), x.abs()));
             assert!(within(Range::negated(a), -x));
-            assert!(within(Range::min(a, b), crate::field2d::detmath::min(x, y)));
-            assert!(within(Range::max(a, b), crate::field2d::detmath::max(x, y)));
+            assert!(within(Range::min(a, b), crate::det::math::min(x, y)));
+            assert!(within(Range::max(a, b), crate::det::math::max(x, y)));
         }
     }
 

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::{Instr, MatOut, Op, Program};
-use crate::field2d::detmath::{Dual, Num, nmax, nmin};
+use crate::det::math::{Dual, Num, nmax, nmin};
 use crate::field2d::graph::{Graph, NodeId, Op as G, Repeat};
 use crate::field2d::node::Axis;
 use crate::field2d::sdf::MaterialId;

@@ -38,7 +38,7 @@ use super::sdf::MaterialId;
 /// registers in a [`Tape`]); `imm` is a constant's bits or an index into the parameters.
 ///
 /// Value kinds: float values (a dual number in gradient mode), masks and integers. Float
-/// instructions follow the dual-number arithmetic of [`super::detmath::Dual`] exactly, so
+/// instructions follow the dual-number arithmetic of [`crate::det::math::Dual`] exactly, so
 /// the gradient's bits match the reference too (`a + C` and `a.offset(c)` differ there:
 /// `dx + 0.0` turns `-0.0` into `+0.0`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

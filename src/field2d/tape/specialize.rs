@@ -19,7 +19,7 @@ use glam::Vec2;
 use super::interval::{Range, Tri, and};
 use super::lower::{Builder, Mat};
 use super::{Instr, MatOut, Op, Program};
-use crate::field2d::detmath;
+use crate::det::math;
 use crate::field2d::primitives as prim;
 
 /// The bound of each value, as the pass computes it.
@@ -214,7 +214,7 @@ impl<'a> Specializer<'a> {
         let prim_at = |f: &dyn Fn(Vec2) -> f32| {
             Bound::Float(Range::lipschitz_box(ra, rb, |x, y| f(Vec2::new(x, y))))
         };
-        let pt = |x: f32, y: f32| detmath::V2::new(x, y);
+        let pt = |x: f32, y: f32| math::V2::new(x, y);
         Bound::Float(match ins.op {
             Op::X => self.region.0,
             Op::Y => self.region.1,

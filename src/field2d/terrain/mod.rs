@@ -80,13 +80,13 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::detmath::{Dual, Num, V2, max, nclamp, nmax, nmin};
 use super::event::{Event, EventError, EventKind};
 use super::exec;
 use super::grid::{self, Brick, CellState, Grid, GridError, GridStats, MaterialSource};
-use super::quant::FIXED_ONE;
 use super::sdf::{MaterialId, Sample, Sdf};
 use super::simd::Backend;
+use crate::det::math::{Dual, Num, V2, max, nclamp, nmax, nmin};
+use crate::det::quant::FIXED_ONE;
 use journal::{Entry, Journal};
 pub use journal::{RollbackError, TerrainMark};
 use plan::{CellPlan, Plans};

@@ -29,7 +29,7 @@ use std::cmp::Ordering;
 use glam::Vec2;
 
 use super::Terrain;
-use crate::field2d::detmath::{Num, V2};
+use crate::det::math::{Num, V2};
 use crate::field2d::event::EventKind;
 use crate::field2d::grid::{CellState, MaterialSource};
 use crate::field2d::sdf::{MaterialId, Sdf};

@@ -6,12 +6,12 @@
 use glam::{Mat3, Vec2, Vec3};
 
 use super::lanes::V3;
-use crate::march3d::math;
-use crate::march3d::noise::{FbmLanes, noise3};
-use crate::march3d::plan::{
+use crate::emit::plan3d::{
     EARLY_OUT_MARGIN, Guard, Hash, Lift, Node, Plan, Prim, PrimKind, SKY, Shape, Sphere,
     VALUE_NOISE3_SLOPE,
 };
+use crate::march3d::math;
+use crate::march3d::noise::{FbmLanes, noise3};
 use crate::march3d::simd::{Pack, PackKernel};
 
 /// The material lane value of the background (`SKY` as `i32`).

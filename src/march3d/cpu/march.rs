@@ -4,7 +4,7 @@
 
 use super::eval::{Scene, Tally, map};
 use super::lanes::V3;
-use crate::march3d::plan::March;
+use crate::emit::plan3d::March;
 use crate::march3d::simd::Pack;
 
 /// Per-frame march constants.

@@ -24,9 +24,9 @@ use thiserror::Error;
 use self::eval::Tally;
 use self::lanes::V3;
 use self::shade::{Frame, MAX_WIDTH, camera_rays, shade};
-use super::plan::{Camera, Plan, Shading, Shape};
 use super::simd::count::{self, Counting};
 use super::simd::{Isa, IsaError, Pack, PackKernel};
+use crate::emit::plan3d::{Camera, Plan, Shading, Shape};
 
 /// The longest image side accepted.
 pub const MAX_SIDE: u32 = 16_384;
@@ -283,8 +283,8 @@ fn validate_plan(plan: &Plan) -> Result<(), String> {
 
 /// Whether a node's numbers are finite (NaN would poison every lane it touches) and its
 /// shape parameters usable.
-fn node_is_finite(node: &super::plan::Node) -> bool {
-    use super::plan::{Lift, Prim, PrimKind};
+fn node_is_finite(node: &crate::emit::plan3d::Node) -> bool {
+    use crate::emit::plan3d::{Lift, Prim, PrimKind};
     fn prim_ok(p: &Prim) -> bool {
         let kind = match p.kind {
             PrimKind::Sphere { r } | PrimKind::Octahedron { s: r } => r.is_finite(),

@@ -7,10 +7,10 @@ use glam::Vec3;
 use super::eval::{Scene, Tally, map, ray_meets_sphere};
 use super::lanes::V3;
 use super::march::{MarchC, march, normal, soft_shadow};
-use crate::march3d::math;
-use crate::march3d::plan::{
+use crate::emit::plan3d::{
     AoMode, Camera, Material, PaperShading, Plan, Shading, ShadowMode, Sphere, WorldShading,
 };
+use crate::march3d::math;
 use crate::march3d::simd::Pack;
 
 /// The widest packet any backend uses.

@@ -3,12 +3,12 @@
 
 use std::time::Instant;
 
-use crate::emit::ShaderCache;
 use crate::emit::codegen3d::march_wgsl;
-use crate::march3d::plan::{Camera, Plan};
-use crate::render2d::gpu::GpuError;
-use crate::render2d::gpu::readback::{Offscreen, READBACK_FORMAT};
-use crate::render2d::gpu::timing::Timestamps;
+use crate::emit::plan3d::{Camera, Plan};
+use crate::gpu::GpuError;
+use crate::gpu::PipelineCache;
+use crate::gpu::Timestamps;
+use crate::gpu::{Offscreen, READBACK_FORMAT};
 
 use super::MarchGpuError;
 use super::uniforms::MarchFrame;
@@ -30,7 +30,7 @@ pub struct Marcher {
     bind_layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
     frame: wgpu::Buffer,
-    pipelines: ShaderCache<wgpu::ComputePipeline>,
+    pipelines: PipelineCache<wgpu::ComputePipeline>,
     readback: Option<Offscreen>,
     timestamps: Option<Timestamps>,
 }
@@ -82,7 +82,7 @@ impl Marcher {
             bind_layout,
             pipeline_layout,
             frame,
-            pipelines: ShaderCache::new(PIPELINE_CACHE),
+            pipelines: PipelineCache::new(PIPELINE_CACHE),
             readback: None,
             timestamps: Timestamps::new(device, queue, 1),
         })

@@ -1,7 +1,7 @@
 //! The GPU raymarcher: a plan's emitted WGSL (`emit::codegen3d`) as a compute pass on the
 //! caller's wgpu device, writing an `rgba8unorm` storage texture.
 //!
-//! [`Marcher`] compiles one pipeline per plan key (an LRU [`ShaderCache`](crate::emit::ShaderCache)
+//! [`Marcher`] compiles one pipeline per plan key (an LRU [`PipelineCache`](crate::gpu::PipelineCache)
 //! with hit/miss counters), records the pass into the caller's encoder and view
 //! ([`Marcher::encode`]), or renders and reads back pixels ([`Marcher::render_to_rgba`],
 //! [`Marcher::render_timed`]). Module map: [`uniforms`] (the camera uniform shared with
@@ -13,7 +13,7 @@ pub mod uniforms;
 use thiserror::Error;
 
 use crate::emit::codegen3d::Codegen3dError;
-use crate::render2d::gpu::GpuError;
+use crate::gpu::GpuError;
 
 pub use marcher::Marcher;
 pub use uniforms::MarchFrame;

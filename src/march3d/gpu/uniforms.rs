@@ -4,7 +4,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::march3d::plan::Camera;
+use crate::emit::plan3d::Camera;
 
 /// The camera and image size of a frame; `MarchFrame` in `shaders/march3d.wgsl`. Each
 /// `vec3` is followed by a 4-byte scalar, which fills the 16-byte alignment WGSL gives it.

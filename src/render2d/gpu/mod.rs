@@ -10,68 +10,16 @@
 //!
 //! Module map: [`uniforms`] (plain data shared with WGSL), [`grid_mirror`] (incremental
 //! uploads of the explosion grid), [`shaders`] (WGSL assembly), [`renderer`] (pipelines and
-//! passes), [`context`] (a headless device for tools and tests), [`readback`] (render to an
-//! image), [`timing`] (GPU timestamps for benchmarks).
+//! passes), [`readback`] (a frame rendered to an image). The device plumbing it shares with
+//! the 3D raymarcher (headless context, offscreen targets, timestamps, the pipeline cache and
+//! [`GpuError`]) is [`crate::gpu`].
 
-pub mod context;
 pub mod grid_mirror;
 pub mod readback;
 pub mod renderer;
 pub mod shaders;
-pub mod timing;
 pub mod uniforms;
 
-use thiserror::Error;
-
-use crate::render2d::lattice::LatticeError;
-
-pub use context::GpuContext;
+use crate::gpu::GpuError;
+pub use readback::{Pipeline, render_to_image};
 pub use renderer::{PrepareStats, TerrainRenderer};
-
-/// Why the GPU renderer could not do its job.
-#[derive(Debug, Error)]
-#[non_exhaustive]
-pub enum GpuError {
-    /// No adapter was found (no GPU and no software driver).
-    #[error("no GPU adapter found: {0}")]
-    NoAdapter(String),
-    /// The adapter refused to create a device.
-    #[error("could not create a GPU device: {0}")]
-    RequestDevice(String),
-    /// A buffer or texture would exceed the device's limits.
-    #[error("{what} need {needed} bytes, above the device limit of {limit}")]
-    LimitsTooLow {
-        /// What was being allocated.
-        what: &'static str,
-        /// Bytes needed.
-        needed: u64,
-        /// The device's limit.
-        limit: u64,
-    },
-    /// The device lacks a texture format capability the renderer needs.
-    #[error("the device cannot {0}")]
-    Unsupported(String),
-    /// A shader or pipeline failed validation on the device.
-    #[error("GPU validation failed for {what}: {message}")]
-    Validation {
-        /// The object being created.
-        what: String,
-        /// The driver's message.
-        message: String,
-    },
-    /// The device was lost or out of memory.
-    #[error("the GPU device was lost or ran out of memory: {0}")]
-    DeviceLost(String),
-    /// The camera cannot be rendered.
-    #[error("camera: {0}")]
-    Lattice(#[from] LatticeError),
-    /// `render` was called before a successful `prepare`.
-    #[error("render called before prepare")]
-    NotPrepared,
-    /// The render target format is not one the renderer can draw into.
-    #[error("unsupported render target format {0:?}")]
-    TargetFormat(wgpu::TextureFormat),
-    /// Reading back pixels failed.
-    #[error("reading the frame back failed: {0}")]
-    Readback(String),
-}

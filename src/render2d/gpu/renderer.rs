@@ -1,11 +1,11 @@
 //! [`TerrainRenderer`]: pipelines, textures and the three passes.
 
-use crate::emit::ShaderCache;
 use crate::emit::terrain2d::TerrainEmitter;
 use crate::field2d::aabb::Aabb;
 use crate::field2d::graph::Graph;
 use crate::field2d::sdf::Sdf;
 use crate::field2d::terrain::Terrain;
+use crate::gpu::PipelineCache;
 use crate::render2d::camera::Camera;
 use crate::render2d::lattice::Lattice;
 use crate::render2d::options::{Reconstruction, RenderOptions, Upsample};
@@ -79,7 +79,7 @@ pub struct TerrainRenderer {
     palette: wgpu::Buffer,
     mirror: GridMirror,
     emitter: Option<TerrainEmitter>,
-    field_pipelines: ShaderCache<FieldPipelines>,
+    field_pipelines: PipelineCache<FieldPipelines>,
     layouts: Layouts,
     divergence: wgpu::RenderPipeline,
     pairs: wgpu::RenderPipeline,
@@ -316,7 +316,7 @@ impl TerrainRenderer {
             palette,
             mirror: GridMirror::new(device),
             emitter: None,
-            field_pipelines: ShaderCache::new(PIPELINE_CACHE),
+            field_pipelines: PipelineCache::new(PIPELINE_CACHE),
             layouts,
             divergence,
             pairs,
@@ -363,7 +363,8 @@ impl TerrainRenderer {
                     .into(),
             ));
         }
-        let lattice = Lattice::new(camera, self.options.scale)?;
+        let lattice = Lattice::new(camera, self.options.scale)
+            .map_err(|e| GpuError::Camera(e.to_string()))?;
         let mut stats = PrepareStats {
             upload: self.mirror.sync(&self.device, &self.queue, terrain)?,
             ..PrepareStats::default()

@@ -1,4 +1,4 @@
-//! The emitted form of a world for one camera: what the emitter (`emit::world3d`) decided
+//! The emitted form of a world for one camera: what the emitter (`march3d::compile`) decided
 //! and what both renderers execute, the WGSL code generator (`emit::codegen3d`) as shader
 //! text and the CPU sphere tracer (`march3d::cpu`) by interpreting it.
 //!
@@ -109,7 +109,7 @@ pub const VALUE_NOISE3_SLOPE: f32 = 2.598_076;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Plan {
     /// The cache key of the emitted program: visible set, LOD levels, step count and the
-    /// options that change the code (see `emit::world3d`).
+    /// options that change the code (see `march3d::compile`).
     pub key: u64,
     /// The march.
     pub march: March,

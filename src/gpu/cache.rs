@@ -17,7 +17,7 @@ struct Entry<V> {
 
 /// Bounded LRU cache from `u64` keys to values.
 #[derive(Debug)]
-pub struct ShaderCache<V> {
+pub struct PipelineCache<V> {
     capacity: usize,
     entries: BTreeMap<u64, Entry<V>>,
     /// Last-use stamp -> key, oldest first: finds the eviction victim in O(log n).
@@ -27,11 +27,11 @@ pub struct ShaderCache<V> {
     misses: u64,
 }
 
-impl<V> ShaderCache<V> {
+impl<V> PipelineCache<V> {
     /// An empty cache holding at most `capacity` values (at least one: a cache that holds
     /// nothing would recompile on every frame).
-    pub fn new(capacity: usize) -> ShaderCache<V> {
-        ShaderCache {
+    pub fn new(capacity: usize) -> PipelineCache<V> {
+        PipelineCache {
             capacity: capacity.max(1),
             entries: BTreeMap::new(),
             by_age: BTreeMap::new(),
@@ -163,7 +163,7 @@ mod tests {
 
     #[test]
     fn zero_capacity_holds_one_value() {
-        let mut cache = ShaderCache::<u8>::new(0);
+        let mut cache = PipelineCache::<u8>::new(0);
         assert_eq!(cache.capacity(), 1);
         cache.get_or_insert_with(1, || 1);
         cache.get_or_insert_with(2, || 2);
@@ -173,7 +173,7 @@ mod tests {
 
     #[test]
     fn get_counts_and_refreshes_insert_evicts_the_least_recently_used() {
-        let mut cache = ShaderCache::new(2);
+        let mut cache = PipelineCache::new(2);
         cache.insert(1, "one");
         cache.insert(2, "two");
         assert_eq!(cache.get(1), Some(&"one"));
@@ -196,7 +196,7 @@ mod tests {
 
     #[test]
     fn failed_creation_stores_nothing() {
-        let mut cache = ShaderCache::<u32>::new(2);
+        let mut cache = PipelineCache::<u32>::new(2);
         let r: Result<_, &str> = cache.get_or_try_insert_with(5, || Err("rejected"));
         assert_eq!(r.unwrap_err(), "rejected");
         assert_eq!((cache.len(), cache.misses(), cache.hits()), (0, 1, 0));

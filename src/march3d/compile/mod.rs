@@ -1,5 +1,6 @@
-//! The 3D emitter: a scene and a camera to a [`Plan`], run once per camera update, with
-//! every optimization of the emitted world switchable for measurement.
+//! The 3D scene compiler: a scene and a camera to a [`Plan`], run once per camera update,
+//! with every optimization of the emitted world switchable for measurement. The object
+//! geometry (trees, rocks, huts as primitives with bounds) is `objects`.
 //!
 //! Emitter-side (decided here, per camera): frustum culling (behind the camera, beyond the
 //! far plane, outside the side planes, by bounding sphere), distance LOD (a tree's six
@@ -14,16 +15,18 @@
 //! key (a hash of the scene, the visible set with LODs, the step count and the options)
 //! names the plan: an unchanged key is an unchanged shader.
 
+mod objects;
+
 use glam::Vec3;
 use thiserror::Error;
 
-use super::fnv::Fnv64;
-use super::objects3d::{Prepared, guard_for, prepare};
-use crate::march3d::plan::{
+use crate::emit::fnv::Fnv64;
+use crate::emit::plan3d::{
     AoMode, Camera, Hash, Lift, March, Material, Node, PaperShading, Plan, Shading, ShadowMode,
     Shape, Sphere, TerrainPlan, WorldShading,
 };
 use crate::march3d::scene::{Lighting, MarchSettings, Scene, SceneError};
+use objects::{Prepared, guard_for, prepare};
 
 /// The step factor used without the Lipschitz bound: the common hand-tuned heuristic.
 pub const HEURISTIC_STEP: f32 = 0.68;
@@ -132,7 +135,7 @@ impl StepTiers {
 
 /// What the emitter does; [`Default`] turns everything on.
 #[derive(Clone, Debug, PartialEq)]
-pub struct EmitOptions {
+pub struct CompileOptions {
     /// Enabled optimizations (see [`Optimization`]).
     pub enabled: Vec<Optimization>,
     /// Objects whose bounding sphere is farther than this become their LOD form.
@@ -143,9 +146,9 @@ pub struct EmitOptions {
     pub aspect: f32,
 }
 
-impl Default for EmitOptions {
-    fn default() -> EmitOptions {
-        EmitOptions {
+impl Default for CompileOptions {
+    fn default() -> CompileOptions {
+        CompileOptions {
             enabled: Optimization::ALL.to_vec(),
             lod_distance: 60.0,
             tiers: StepTiers::default(),
@@ -154,26 +157,26 @@ impl Default for EmitOptions {
     }
 }
 
-impl EmitOptions {
+impl CompileOptions {
     /// Every optimization off: the naive emit the others are measured against.
-    pub fn naive() -> EmitOptions {
-        EmitOptions {
+    pub fn naive() -> CompileOptions {
+        CompileOptions {
             enabled: Vec::new(),
-            ..EmitOptions::default()
+            ..CompileOptions::default()
         }
     }
 
     /// The reference paper's renderer: every object every step, material indices tracked
     /// during the march, the scene's own step budget.
-    pub fn paper() -> EmitOptions {
-        EmitOptions {
+    pub fn paper() -> CompileOptions {
+        CompileOptions {
             enabled: vec![Optimization::MaterialIds],
-            ..EmitOptions::default()
+            ..CompileOptions::default()
         }
     }
 
     /// These options with one optimization switched off.
-    pub fn without(&self, o: Optimization) -> EmitOptions {
+    pub fn without(&self, o: Optimization) -> CompileOptions {
         let mut r = self.clone();
         r.enabled.retain(|e| *e != o);
         r
@@ -196,7 +199,7 @@ impl EmitOptions {
 /// Why a scene cannot be emitted.
 #[derive(Clone, Debug, PartialEq, Error)]
 #[non_exhaustive]
-pub enum EmitError3d {
+pub enum CompileError {
     /// The scene is invalid.
     #[error(transparent)]
     Scene(#[from] SceneError),
@@ -219,7 +222,7 @@ pub struct Visibility {
 
 /// A validated scene with its objects prepared, ready to emit plans for cameras.
 #[derive(Clone, Debug)]
-pub struct WorldEmitter {
+pub struct WorldCompiler {
     scene: Scene,
     settings: MarchSettings,
     fingerprint: u64,
@@ -228,9 +231,9 @@ pub struct WorldEmitter {
     ground: Vec<f32>,
 }
 
-impl WorldEmitter {
+impl WorldCompiler {
     /// Validates and prepares `scene`.
-    pub fn new(scene: &Scene) -> Result<WorldEmitter, EmitError3d> {
+    pub fn new(scene: &Scene) -> Result<WorldCompiler, CompileError> {
         scene.validate()?;
         let text = ron::to_string(scene).unwrap_or_default();
         let fingerprint = Fnv64::new().bytes(text.as_bytes()).finish();
@@ -242,7 +245,7 @@ impl WorldEmitter {
                 _ => 0.0,
             })
             .collect();
-        Ok(WorldEmitter {
+        Ok(WorldCompiler {
             settings: scene.march_settings(),
             scene: scene.clone(),
             fingerprint,
@@ -257,7 +260,7 @@ impl WorldEmitter {
     }
 
     /// The objects `camera` sees and their levels of detail.
-    pub fn visibility(&self, camera: &Camera, opts: &EmitOptions) -> Visibility {
+    pub fn visibility(&self, camera: &Camera, opts: &CompileOptions) -> Visibility {
         let objects = self
             .objects
             .iter()
@@ -285,7 +288,7 @@ impl WorldEmitter {
     }
 
     /// The plan for `camera`.
-    pub fn emit(&self, camera: &Camera, opts: &EmitOptions) -> Result<Plan, EmitError3d> {
+    pub fn emit(&self, camera: &Camera, opts: &CompileOptions) -> Result<Plan, CompileError> {
         check_options(opts)?;
         let vis = self.visibility(camera, opts);
         let steps = if opts.on(Optimization::StepTiers) {
@@ -326,7 +329,7 @@ impl WorldEmitter {
         })
     }
 
-    fn key(&self, vis: &Visibility, steps: u32, opts: &EmitOptions) -> u64 {
+    fn key(&self, vis: &Visibility, steps: u32, opts: &CompileOptions) -> u64 {
         let mut h = Fnv64::new();
         h.u64(self.fingerprint).u32(steps).u32(opts.bits());
         for &(i, lod) in &vis.objects {
@@ -335,7 +338,7 @@ impl WorldEmitter {
         h.finish()
     }
 
-    fn object_nodes(&self, i: usize, lod: u8, opts: &EmitOptions) -> Vec<Node> {
+    fn object_nodes(&self, i: usize, lod: u8, opts: &CompileOptions) -> Vec<Node> {
         let p = &self.objects[i];
         let parts = match (&p.far, lod) {
             (Some(far), 1) => far,
@@ -374,7 +377,7 @@ impl WorldEmitter {
             .collect()
     }
 
-    fn terrain_plan(&self, opts: &EmitOptions) -> Option<TerrainPlan> {
+    fn terrain_plan(&self, opts: &CompileOptions) -> Option<TerrainPlan> {
         let t = self.scene.terrain.as_ref()?;
         Some(TerrainPlan {
             fbm: t.fbm,
@@ -388,7 +391,7 @@ impl WorldEmitter {
         })
     }
 
-    fn march(&self, steps: u32, opts: &EmitOptions) -> March {
+    fn march(&self, steps: u32, opts: &CompileOptions) -> March {
         let s = &self.settings;
         // Without the bound, a world with terrain steps by the heuristic factor everywhere.
         let step_factor = if self.scene.terrain.is_some() && !opts.on(Optimization::LipschitzStep) {
@@ -420,7 +423,7 @@ impl WorldEmitter {
             .collect()
     }
 
-    fn shading(&self, opts: &EmitOptions) -> Shading {
+    fn shading(&self, opts: &CompileOptions) -> Shading {
         match &self.scene.lighting {
             Lighting::Paper(p) => Shading::Paper(PaperShading {
                 lights: p.lights.clone(),
@@ -465,15 +468,15 @@ impl WorldEmitter {
     }
 }
 
-/// The plan of `scene` for `camera` (see [`WorldEmitter`], which keeps the prepared
+/// The plan of `scene` for `camera` (see [`WorldCompiler`], which keeps the prepared
 /// objects between camera updates).
-pub fn emit(scene: &Scene, camera: &Camera, opts: &EmitOptions) -> Result<Plan, EmitError3d> {
-    WorldEmitter::new(scene)?.emit(camera, opts)
+pub fn emit(scene: &Scene, camera: &Camera, opts: &CompileOptions) -> Result<Plan, CompileError> {
+    WorldCompiler::new(scene)?.emit(camera, opts)
 }
 
-fn check_options(opts: &EmitOptions) -> Result<(), EmitError3d> {
+fn check_options(opts: &CompileOptions) -> Result<(), CompileError> {
     let bad = |what, message: &str| {
-        Err(EmitError3d::Option {
+        Err(CompileError::Option {
             what,
             message: message.to_string(),
         })
@@ -492,7 +495,7 @@ fn check_options(opts: &EmitOptions) -> Result<(), EmitError3d> {
 
 /// Whether a bounding sphere can touch the view: in front of the eye (dot with the view
 /// direction), before the far plane, and inside the four side planes.
-fn in_frustum(camera: &Camera, s: &Sphere, opts: &EmitOptions, m: &MarchSettings) -> bool {
+fn in_frustum(camera: &Camera, s: &Sphere, opts: &CompileOptions, m: &MarchSettings) -> bool {
     if !s.radius.is_finite() {
         return true;
     }
@@ -517,10 +520,10 @@ fn in_frustum(camera: &Camera, s: &Sphere, opts: &EmitOptions, m: &MarchSettings
 mod tests {
     use super::*;
 
-    fn forest() -> (WorldEmitter, Camera) {
+    fn forest() -> (WorldCompiler, Camera) {
         let scene = Scene::builtin("forest").unwrap();
         let cam = scene.camera.camera().unwrap();
-        (WorldEmitter::new(&scene).unwrap(), cam)
+        (WorldCompiler::new(&scene).unwrap(), cam)
     }
 
     #[test]
@@ -537,14 +540,14 @@ mod tests {
     #[test]
     fn culling_drops_what_is_behind_and_keeps_what_is_ahead() {
         let (e, cam) = forest();
-        let all = e.visibility(&cam, &EmitOptions::naive()).objects.len();
-        let seen = e.visibility(&cam, &EmitOptions::default()).objects.len();
+        let all = e.visibility(&cam, &CompileOptions::naive()).objects.len();
+        let seen = e.visibility(&cam, &CompileOptions::default()).objects.len();
         assert_eq!(all, e.scene().objects.len());
         assert!(seen < all && seen > 0, "{seen} of {all}");
         // Turned around, the objects in front before are behind now.
         let back = Camera::looking(cam.position, -cam.forward, Vec3::Y, 50.0).unwrap();
-        let behind = e.visibility(&back, &EmitOptions::default());
-        let front = e.visibility(&cam, &EmitOptions::default());
+        let behind = e.visibility(&back, &CompileOptions::default());
+        let front = e.visibility(&cam, &CompileOptions::default());
         let both = front
             .objects
             .iter()
@@ -556,7 +559,7 @@ mod tests {
     #[test]
     fn the_key_changes_with_the_visible_set_only() {
         let (e, cam) = forest();
-        let o = EmitOptions::default();
+        let o = CompileOptions::default();
         let a = e.emit(&cam, &o).unwrap();
         let nudged = Camera::looking(
             cam.position + Vec3::new(0.0, 0.0, 0.01),
@@ -579,8 +582,8 @@ mod tests {
     #[test]
     fn naive_and_optimized_plans_differ_as_documented() {
         let (e, cam) = forest();
-        let naive = e.emit(&cam, &EmitOptions::naive()).unwrap();
-        let all = e.emit(&cam, &EmitOptions::default()).unwrap();
+        let naive = e.emit(&cam, &CompileOptions::naive()).unwrap();
+        let all = e.emit(&cam, &CompileOptions::default()).unwrap();
         assert!(naive.nodes.iter().all(|n| n.guard.is_none()));
         assert!(all.nodes.iter().any(|n| n.guard.is_some()));
         assert!(
@@ -604,7 +607,7 @@ mod tests {
     fn the_paper_plan_keeps_every_object_and_the_reference_settings() {
         let scene = Scene::builtin("scene0").unwrap();
         let cam = scene.camera.camera().unwrap();
-        let plan = emit(&scene, &cam, &EmitOptions::paper()).unwrap();
+        let plan = emit(&scene, &cam, &CompileOptions::paper()).unwrap();
         assert_eq!(plan.nodes.len(), 6);
         assert_eq!(plan.march.max_steps, 3000);
         assert_eq!(plan.march.hit, 5.0e-6);

@@ -2,7 +2,7 @@
 //! `TIMESTAMP_QUERY`), for benchmarks. Reading results waits for the GPU.
 
 use super::GpuError;
-use super::readback::map_read;
+use super::map_read;
 
 /// A set of timestamp pairs and the buffers to resolve and read them.
 pub struct Timestamps {

@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 
-use crate::march3d::plan::{Guard, Lift, Node, Prim, PrimKind, Shape, Sphere};
+use crate::emit::plan3d::{Guard, Lift, Node, Prim, PrimKind, Shape, Sphere};
 use crate::march3d::scene::{Object, Scene, rotation_degrees};
 
 /// The nodes of one object at one level of detail, before lifting onto the terrain.

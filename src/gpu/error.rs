@@ -1,0 +1,51 @@
+//! The one error type of the GPU layer, shared by the 2D renderer and the 3D raymarcher.
+
+use thiserror::Error;
+
+/// Why a GPU renderer could not do its job.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum GpuError {
+    /// No adapter was found (no GPU and no software driver).
+    #[error("no GPU adapter found: {0}")]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("could not create a GPU device: {0}")]
+    RequestDevice(String),
+    /// A buffer or texture would exceed the device's limits.
+    #[error("{what} need {needed} bytes, above the device limit of {limit}")]
+    LimitsTooLow {
+        /// What was being allocated.
+        what: &'static str,
+        /// Bytes needed.
+        needed: u64,
+        /// The device's limit.
+        limit: u64,
+    },
+    /// The device lacks a texture format capability the renderer needs.
+    #[error("the device cannot {0}")]
+    Unsupported(String),
+    /// A shader or pipeline failed validation on the device.
+    #[error("GPU validation failed for {what}: {message}")]
+    Validation {
+        /// The object being created.
+        what: String,
+        /// The driver's message.
+        message: String,
+    },
+    /// The device was lost or out of memory.
+    #[error("the GPU device was lost or ran out of memory: {0}")]
+    DeviceLost(String),
+    /// The camera or view cannot be rendered (the reason names the bad value).
+    #[error("camera: {0}")]
+    Camera(String),
+    /// `render` was called before a successful `prepare`.
+    #[error("render called before prepare")]
+    NotPrepared,
+    /// The render target format is not one the renderer can draw into.
+    #[error("unsupported render target format {0:?}")]
+    TargetFormat(wgpu::TextureFormat),
+    /// Reading back pixels failed.
+    #[error("reading the frame back failed: {0}")]
+    Readback(String),
+}

@@ -1,0 +1,20 @@
+//! GPU plumbing shared by the 2D terrain renderer and the 3D raymarcher: a headless device
+//! for tools and tests ([`GpuContext`]), offscreen targets and readback ([`Offscreen`]),
+//! timestamp queries ([`Timestamps`]), the bounded pipeline cache ([`PipelineCache`]) and the
+//! one error type ([`GpuError`]).
+//!
+//! Nothing here knows about terrain or scenes: `render2d::gpu` and `march3d::gpu` build on it,
+//! and it depends on no other module of the crate.
+
+mod cache;
+mod context;
+mod error;
+mod offscreen;
+mod timing;
+
+pub use cache::PipelineCache;
+pub use context::GpuContext;
+pub use error::GpuError;
+pub(crate) use offscreen::map_read;
+pub use offscreen::{Offscreen, READBACK_FORMAT};
+pub use timing::Timestamps;
