@@ -11,7 +11,8 @@ use super::graph::{Graph, NodeId, Op, Repeat};
 use super::node::Axis;
 use super::noise::value_noise;
 use super::primitives as prim;
-use super::sdf::{MaterialId, Sample, Sdf};
+use super::sample::{MaterialId, Sample};
+use super::sdf::Sdf;
 use crate::det::math::{Dual, Num, V2, nmax};
 
 impl Graph {

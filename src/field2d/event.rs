@@ -9,7 +9,7 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::sdf::MaterialId;
+use super::sample::MaterialId;
 use crate::det::quant::{self, QuantError};
 
 /// What an event does to the terrain.

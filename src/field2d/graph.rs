@@ -15,7 +15,7 @@ use super::aabb::Aabb;
 use super::error::LevelError;
 use super::node::{Axis, Node, P2};
 use super::noise::NOISE_LIPSCHITZ;
-use super::sdf::MaterialId;
+use super::sample::MaterialId;
 use super::tape::Program;
 use crate::det::math::{self, TAU, sin_cos_deg};
 
@@ -210,8 +210,9 @@ pub struct Graph {
     pub(crate) ops: Vec<Op>,
     pub(crate) info: Vec<NodeInfo>,
     pub(crate) root: NodeId,
-    /// The lowered tape program, built on first use.
-    program: OnceLock<Arc<Program>>,
+    /// The lowered tape program, built on first use ([`Graph::program`], where the
+    /// lowering is).
+    pub(crate) program: OnceLock<Arc<Program>>,
 }
 
 impl Graph {
@@ -249,13 +250,6 @@ impl Graph {
             root,
             program: OnceLock::new(),
         })
-    }
-
-    /// The graph lowered to an SSA tape program (built once, then shared).
-    pub fn program(&self) -> Arc<Program> {
-        self.program
-            .get_or_init(|| Arc::new(crate::field2d::tape::lower::lower(self)))
-            .clone()
     }
 
     /// The root node.

@@ -18,6 +18,7 @@ pub mod noise;
 pub mod primitives;
 
 pub mod query;
+pub mod sample;
 pub mod sdf;
 pub mod simd;
 pub mod tape;
@@ -31,5 +32,6 @@ pub use graph::{Exactness, Graph, GraphLimits, NodeId, NodeInfo};
 pub use grid::{CellState, GridStats, MaterialSource};
 pub use level::{Level, LevelFile, MaterialDef, WorldBounds};
 pub use node::{Axis, Node};
-pub use sdf::{MaterialId, Sample, Sdf};
+pub use sample::{MaterialId, Sample};
+pub use sdf::Sdf;
 pub use terrain::{Terrain, TerrainError, TerrainOptions};

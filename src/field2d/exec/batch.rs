@@ -3,7 +3,7 @@
 use glam::Vec2;
 
 use super::{Dv, Fv, Val, load_points, run_tape};
-use crate::field2d::sdf::{MaterialId, Sample};
+use crate::field2d::sample::{MaterialId, Sample};
 use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
 use crate::field2d::tape::{MatOut, Tape};
 

@@ -7,7 +7,7 @@ use glam::Vec2;
 
 use super::{Dv, Fv, run_tape};
 use crate::det::math::Dual;
-use crate::field2d::sdf::MaterialId;
+use crate::field2d::sample::MaterialId;
 use crate::field2d::simd::scalar::Scalar;
 use crate::field2d::tape::{MatOut, Tape};
 

@@ -13,7 +13,7 @@ use super::{Instr, MatOut, Op, Program};
 use crate::det::math::{Dual, Num, nmax, nmin};
 use crate::field2d::graph::{Graph, NodeId, Op as G, Repeat};
 use crate::field2d::node::Axis;
-use crate::field2d::sdf::MaterialId;
+use crate::field2d::sample::MaterialId;
 
 /// A material while lowering: constant, or an integer SSA value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -215,6 +215,13 @@ fn f(v: f32) -> u32 {
 
 fn v2(v: glam::Vec2) -> [u32; 2] {
     [f(v.x), f(v.y)]
+}
+
+impl Graph {
+    /// The graph lowered to an SSA tape program (built once, then shared).
+    pub fn program(&self) -> Arc<Program> {
+        self.program.get_or_init(|| Arc::new(lower(self))).clone()
+    }
 }
 
 /// Lowers a graph.

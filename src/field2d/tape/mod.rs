@@ -32,7 +32,7 @@ use std::sync::Arc;
 
 pub use crate::field2d::exec::batch::EvalError;
 
-use super::sdf::MaterialId;
+use super::sample::MaterialId;
 
 /// An instruction code. Operands `a`, `b`, `c` are values (SSA ids in a [`Program`],
 /// registers in a [`Tape`]); `imm` is a constant's bits or an index into the parameters.

@@ -32,7 +32,8 @@ use super::Terrain;
 use crate::det::math::{Num, V2};
 use crate::field2d::event::EventKind;
 use crate::field2d::grid::{CellState, MaterialSource};
-use crate::field2d::sdf::{MaterialId, Sdf};
+use crate::field2d::sample::MaterialId;
+use crate::field2d::sdf::Sdf;
 use crate::field2d::tape::MatOut;
 
 /// What a proof may assume about the field inside one grid cell.

@@ -487,3 +487,18 @@ fn accumulate(dist: &mut [f32], r: &[f32], wx: &[f32], wy: f32, first: bool) {
 pub(super) fn pixel_weights(layout: &Layout, x: usize, y: usize) -> [f32; 4] {
     bilinear_weights(layout.columns.frac[x], layout.rows.frac[y])
 }
+
+/// Splits `buf` (rows of `row_len` entries) into the bands of `runs`, in order.
+pub(super) fn split_rows<'r, 'b, T>(
+    runs: &'r [Run],
+    mut buf: &'b mut [T],
+    row_len: usize,
+) -> Vec<(&'r Run, &'b mut [T])> {
+    let mut out = Vec::with_capacity(runs.len());
+    for run in runs {
+        let (band, rest) = std::mem::take(&mut buf).split_at_mut(run.pixels.len() * row_len);
+        out.push((run, band));
+        buf = rest;
+    }
+    out
+}

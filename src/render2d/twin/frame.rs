@@ -4,7 +4,7 @@
 use glam::Vec2;
 use image::{Rgba, RgbaImage};
 
-use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights};
+use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights, split_rows};
 use super::paint::{PaintScratch, Painter};
 use super::reconstruct::reconstruct;
 use super::refine::{RefineStats, field_refined, render_refined};
@@ -344,19 +344,4 @@ fn pass3_inputs<'a>(
         });
     }
     Textures::new(lowres, options)
-}
-
-/// Splits `buf` (rows of `row_len` entries) into the bands of `runs`, in order.
-pub(super) fn split_rows<'r, 'b, T>(
-    runs: &'r [Run],
-    mut buf: &'b mut [T],
-    row_len: usize,
-) -> Vec<(&'r Run, &'b mut [T])> {
-    let mut out = Vec::with_capacity(runs.len());
-    for run in runs {
-        let (band, rest) = std::mem::take(&mut buf).split_at_mut(run.pixels.len() * row_len);
-        out.push((run, band));
-        buf = rest;
-    }
-    out
 }

@@ -36,7 +36,7 @@ use glam::Vec2;
 use image::RgbaImage;
 use serde::Serialize;
 
-use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights};
+use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights, split_rows};
 use super::shade::Shader;
 use super::threads::run_units;
 use super::upsample::{Textures, normal};
@@ -882,7 +882,7 @@ pub(super) fn render_refined<F: Sdf + Sync>(
     let shader = Shader::new(shade, camera.height);
     let width = camera.width as usize;
     let mut image = RgbaImage::new(camera.width, camera.height);
-    let units = super::frame::split_rows(&layout.rows.runs, &mut image, width * 4);
+    let units = split_rows(&layout.rows.runs, &mut image, width * 4);
     run_units(
         units,
         threads,
@@ -930,7 +930,6 @@ pub(super) fn field_refined<F: Sdf + Sync>(
         material: vec![0; pixels],
     };
     let runs = &layout.rows.runs;
-    use super::frame::split_rows;
     let units: Vec<_> = split_rows(runs, &mut field.distance_px, width)
         .into_iter()
         .zip(split_rows(runs, &mut field.normal, width))

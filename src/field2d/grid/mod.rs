@@ -7,11 +7,15 @@
 //! rounding of the query path, so they are conservative for every `f32` query point that the
 //! `f32` cell lookup assigns to the cell.
 
+use crate::field2d::sample::MaterialId;
 use glam::Vec2;
-use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::sdf::MaterialId;
+mod cell;
+
+pub(crate) use cell::{Brick, Cell, CellStateSlot};
+pub use cell::{CellState, GridStats, MaterialSource};
+
 use super::terrain::journal::{Entry, Journal};
 use crate::det::math::{Num, V2, nclamp};
 
@@ -47,97 +51,6 @@ pub enum GridError {
         /// The offending resolution.
         value: u32,
     },
-}
-
-/// Where an air cell takes its material from (carves keep the material that was there).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum MaterialSource {
-    /// The base field's material at the query point.
-    Base,
-    /// A constant material.
-    Constant(MaterialId),
-    /// The nearest lattice sample of a brick.
-    Brick(u32),
-}
-
-/// What a cell's field is before its listed events are applied.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum CellState {
-    /// The base field, clamped to the band.
-    Base,
-    /// Constant `+M`, zero gradient (the whole cell was carved away with margin).
-    Air(MaterialSource),
-    /// Constant `-M`, zero gradient, constant material (the whole cell was filled).
-    Solid(MaterialId),
-    /// A baked brick, bilinearly interpolated.
-    Brick(u32),
-}
-
-impl CellState {
-    /// The brick this state references, if any.
-    pub fn brick(self) -> Option<u32> {
-        match self {
-            CellState::Brick(id) | CellState::Air(MaterialSource::Brick(id)) => Some(id),
-            _ => None,
-        }
-    }
-}
-
-/// Counters describing a grid, for diagnostics and tests.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct GridStats {
-    /// Number of cells.
-    pub cells: usize,
-    /// Longest event list of any cell (the per-query event cost bound).
-    pub max_cell_events: usize,
-    /// Sum of all list lengths.
-    pub total_cell_events: usize,
-    /// Bricks currently referenced by a cell.
-    pub bricks: usize,
-    /// Cells whose state is a brick.
-    pub brick_cells: usize,
-    /// Cells whose state is air.
-    pub air_cells: usize,
-    /// Cells whose state is solid.
-    pub solid_cells: usize,
-    /// Cells whose list is longer than the cap (only while they hold unsettled events).
-    pub over_cap_cells: usize,
-    /// Cell resets performed since the last rebuild.
-    pub resets: u64,
-    /// Bakes performed since the last rebuild.
-    pub bakes: u64,
-    /// Covered events dropped from lists since the last rebuild.
-    pub pruned: u64,
-}
-
-/// One cell: base state and the indices (ascending) of the events that can reach it.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Cell {
-    pub(crate) state: CellStateSlot,
-    pub(crate) events: Vec<u32>,
-    /// Changes whenever the cell's field may change (a number never given to any other
-    /// content of any cell of this terrain), so callers can cache values by it.
-    pub(crate) revision: u64,
-    /// The tick from which every listed event is settled (the field stops depending on the
-    /// tick).
-    pub(crate) settled_at: u32,
-}
-
-/// A `CellState` with a `Default` (Base).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct CellStateSlot(pub(crate) CellState);
-
-impl Default for CellStateSlot {
-    fn default() -> Self {
-        CellStateSlot(CellState::Base)
-    }
-}
-
-/// A baked `(n+1) x (n+1)` lattice of distances and materials, row-major (y outer).
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Brick {
-    pub(crate) values: Vec<f32>,
-    pub(crate) materials: Vec<MaterialId>,
 }
 
 /// An axis-aligned rectangle in `f64`.
