@@ -3,7 +3,6 @@
 //! The field ([`field2d`]) is a level graph of SDF primitives and operators minus carved
 //! circles plus filled circles, kept in an explosion grid so that a query reads only its cell.
 //! Everything on the collision path is bit-for-bit deterministic (see `DESIGN.md`).
-#![warn(missing_docs)]
 
 pub mod det;
 #[cfg(feature = "emit")]
@@ -14,6 +13,7 @@ pub mod gpu;
 #[cfg(feature = "march3d")]
 pub mod march3d;
 pub mod net;
+pub mod prelude;
 #[cfg(feature = "raster")]
 pub mod render2d;
 pub mod sim;

@@ -697,7 +697,7 @@ fn batch_errors_are_reported_not_panics() {
 /// any tiling and thread count, and skips most of the work.
 #[test]
 fn prospero_specialized_image_equals_brute_force() {
-    use craterfield::field2d::tape::image::{ImageOptions, inside_image};
+    use craterfield::field2d::tape::{ImageOptions, inside_image};
     let g = craterfield::field2d::import::graph_from_vm(&prospero_text()).unwrap();
     let program = g.program();
     let brute_opts = ImageOptions {
@@ -748,7 +748,7 @@ fn prospero_specialized_image_equals_brute_force() {
 /// Every choice of fusion patterns computes the unfused tape's bits.
 #[test]
 fn every_fusion_subset_is_bit_identical() {
-    use craterfield::field2d::tape::fuse::FuseOptions;
+    use craterfield::field2d::tape::FuseOptions;
     let (g, pts) = prospero_subset();
     let program = g.program();
     let plain = program.tape(Outputs::Value);

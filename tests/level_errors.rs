@@ -202,7 +202,7 @@ fn absurd_bounds_cells_materials_spawns() {
 
 #[test]
 fn oversized_input_is_refused_before_parsing() {
-    let big = " ".repeat(craterfield::field2d::level::MAX_LEVEL_BYTES + 1);
+    let big = " ".repeat(craterfield::field2d::MAX_LEVEL_BYTES + 1);
     assert!(matches!(
         Level::from_ron(&big),
         Err(LevelError::TooLarge { .. })
@@ -217,7 +217,7 @@ proptest! {
     /// Truncated or corrupted level text gives an error or a level, never a panic.
     #[test]
     fn mangled_levels_never_panic(cut in 0usize..6000, flips in proptest::collection::vec((0usize..6000, any::<u8>()), 0..4)) {
-        let mut bytes = craterfield::field2d::level::DEFAULT_LEVEL_RON.as_bytes().to_vec();
+        let mut bytes = craterfield::field2d::DEFAULT_LEVEL_RON.as_bytes().to_vec();
         bytes.truncate(cut.min(bytes.len()));
         for (i, b) in flips {
             if i < bytes.len() {

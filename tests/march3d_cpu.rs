@@ -2,8 +2,8 @@
 //! counts and tile sizes, and its counting mode, over-relaxation and input errors.
 
 use craterfield::emit::plan3d::{
-    AoMode, Camera, Fbm, Guard, Hash, Lift, March, Material, Node, PaperShading, Plan, PointLight,
-    Prim, PrimKind, Shading, ShadowMode, Shape, Sphere, TerrainPlan, WorldShading,
+    AoMode, Camera3d, Fbm, Guard, Hash, Lift, March, Material, Node, PaperShading, Plan,
+    PointLight, Prim, PrimKind, Shading, ShadowMode, Shape, Sphere, TerrainPlan, WorldShading,
 };
 use craterfield::march3d::cpu::{self, Rendered, TraceError, TraceOptions};
 use craterfield::march3d::scene::rotation_degrees;
@@ -63,12 +63,12 @@ fn sphere(c: Vec3, r: f32) -> Sphere {
     }
 }
 
-fn camera(fov: f32) -> Camera {
-    Camera::looking(Vec3::ZERO, Vec3::Z, Vec3::Y, fov).unwrap()
+fn camera(fov: f32) -> Camera3d {
+    Camera3d::looking(Vec3::ZERO, Vec3::Z, Vec3::Y, fov).unwrap()
 }
 
 /// The reference paper's scene0.
-fn scene0() -> (Plan, Camera) {
+fn scene0() -> (Plan, Camera3d) {
     let at = |x, y, z| Vec3::new(x, y, z);
     let plane = Prim::at(
         Vec3::ZERO,
@@ -148,7 +148,7 @@ fn scene0() -> (Plan, Camera) {
 }
 
 /// The reference paper's Mandelbulb scene.
-fn mandelbulb() -> (Plan, Camera) {
+fn mandelbulb() -> (Plan, Camera3d) {
     let centre = Vec3::new(0.0, 0.0, 6.0);
     let plane = Prim::at(
         Vec3::ZERO,
@@ -190,7 +190,7 @@ fn mandelbulb() -> (Plan, Camera) {
 }
 
 /// A small outdoor world exercising the terrain and every node kind.
-fn world() -> (Plan, Camera) {
+fn world() -> (Plan, Camera3d) {
     let fbm = Fbm {
         base: 0.0,
         amplitude: 1.5,
@@ -332,7 +332,7 @@ fn world() -> (Plan, Camera) {
         material_ids: true,
         hash: Hash::DotFract,
     };
-    let cam = Camera::looking(
+    let cam = Camera3d::looking(
         Vec3::new(0.0, 3.0, 0.0),
         Vec3::new(0.0, -0.2, 1.0),
         Vec3::Y,
@@ -344,7 +344,7 @@ fn world() -> (Plan, Camera) {
 
 /// The world with the other shading switches: full soft shadows, fixed AO, central
 /// differences on the terrain, materials found after the march, the Sin hash.
-fn world_alt() -> (Plan, Camera) {
+fn world_alt() -> (Plan, Camera3d) {
     let (mut plan, cam) = world();
     if let Shading::World(w) = &mut plan.shading {
         w.shadow = ShadowMode::Full { steps: 48, k: 8.0 };
@@ -366,7 +366,7 @@ fn opts(isa: Isa, threads: usize, tile: u32) -> TraceOptions {
     }
 }
 
-fn draw(scene: &(Plan, Camera), o: &TraceOptions) -> Rendered {
+fn draw(scene: &(Plan, Camera3d), o: &TraceOptions) -> Rendered {
     cpu::render(&scene.0, &scene.1, 64, 36, o).unwrap()
 }
 
@@ -388,7 +388,7 @@ fn differing(a: &Rendered, b: &Rendered, levels: u8) -> (usize, u8) {
     (n, worst)
 }
 
-fn scenes() -> Vec<(&'static str, (Plan, Camera))> {
+fn scenes() -> Vec<(&'static str, (Plan, Camera3d))> {
     vec![
         ("scene0", scene0()),
         ("mandelbulb", mandelbulb()),
@@ -529,7 +529,7 @@ fn a_primary_ray_takes_at_most_max_steps() {
         s.bounces = 0;
     }
     for j in [0, 20, 35] {
-        let c = Camera {
+        let c = Camera3d {
             tan_half_fov: cam.tan_half_fov * (1.0 + j as f32 * 0.01),
             ..cam
         };
@@ -609,7 +609,7 @@ fn bad_sizes_and_values_are_errors() {
         );
         assert!(cpu::render_counted(&plan, &cam, w, h, 1).is_err());
     }
-    let nan_cam = Camera {
+    let nan_cam = Camera3d {
         position: Vec3::new(f32::NAN, 0.0, 0.0),
         ..cam
     };
@@ -617,7 +617,7 @@ fn bad_sizes_and_values_are_errors() {
         cpu::render(&plan, &nan_cam, 8, 8, &o),
         Err(TraceError::BadCamera(_))
     ));
-    let fov_cam = Camera {
+    let fov_cam = Camera3d {
         tan_half_fov: f32::NAN,
         ..cam
     };

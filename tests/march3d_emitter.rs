@@ -2,7 +2,7 @@
 //! world needs at least 5x fewer SDF evaluations per pixel than the naive emit, looks the
 //! same within the visual-diff tolerance, and every switch changes what it claims to.
 
-use craterfield::march3d::Camera;
+use craterfield::march3d::Camera3d;
 use craterfield::march3d::compile::{CompileOptions, Optimization, WorldCompiler};
 use craterfield::march3d::cpu::{Rendered, Stats, render_counted};
 use craterfield::march3d::scene::Scene;
@@ -11,13 +11,13 @@ use craterfield::visdiff::{DiffOptions, compare};
 const W: u32 = 128;
 const H: u32 = 72;
 
-fn forest() -> (WorldCompiler, Camera) {
+fn forest() -> (WorldCompiler, Camera3d) {
     let scene = Scene::builtin("forest").unwrap();
     let camera = scene.camera.camera().unwrap();
     (WorldCompiler::new(&scene).unwrap(), camera)
 }
 
-fn counted(e: &WorldCompiler, camera: &Camera, opts: &CompileOptions) -> (Rendered, Stats) {
+fn counted(e: &WorldCompiler, camera: &Camera3d, opts: &CompileOptions) -> (Rendered, Stats) {
     let plan = e.emit(camera, opts).unwrap();
     render_counted(&plan, camera, W, H, 0).unwrap()
 }

@@ -51,7 +51,7 @@ fn out_dir() -> PathBuf {
     dir
 }
 
-fn render(ctx: &GpuContext, plan: &Plan, camera: &craterfield::march3d::Camera) -> RgbaImage {
+fn render(ctx: &GpuContext, plan: &Plan, camera: &craterfield::march3d::Camera3d) -> RgbaImage {
     let mut marcher = Marcher::new(&ctx.device, &ctx.queue).expect("marcher");
     let (pixels, ms) = marcher
         .render_timed(plan, camera, SIZE.0, SIZE.1)
@@ -72,7 +72,7 @@ fn every_plan_renders(ctx: &GpuContext) -> TestResult {
 
 /// The plans of the comparison: every builtin scene (the paper scenes with the paper
 /// preset, the worlds with every optimization on and with none) and the hand-built plans.
-fn comparison_plans() -> Vec<(String, Plan, craterfield::march3d::Camera)> {
+fn comparison_plans() -> Vec<(String, Plan, craterfield::march3d::Camera3d)> {
     let mut out = Vec::new();
     for name in BUILTIN {
         let scene = Scene::builtin(name).expect("builtin scene");

@@ -8,11 +8,11 @@ use std::time::Instant;
 
 use craterfield::det::quant::FIXED_MAX;
 use craterfield::field2d::Level;
-use craterfield::field2d::event::{Event, EventKind};
-use craterfield::net::codec::{DecodeLimits, crc32};
-use craterfield::net::error::{DecodeError, DecodeErrorKind};
+use craterfield::field2d::{Event, EventKind};
 use craterfield::net::replay::{self, Recorder, Replay, VerifyError};
 use craterfield::net::wire::{self, MessageKind, TerrainSnapshot};
+use craterfield::net::{DecodeError, DecodeErrorKind};
+use craterfield::net::{DecodeLimits, crc32};
 use craterfield::sim::{Input, Settings, World, buttons, level_hash};
 use proptest::prelude::*;
 

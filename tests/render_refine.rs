@@ -6,7 +6,7 @@
 mod common;
 
 use common::Rng;
-use craterfield::field2d::event::Event;
+use craterfield::field2d::Event;
 use craterfield::field2d::terrain::RectSign;
 use craterfield::field2d::{Graph, Level, Sdf, Terrain};
 use craterfield::render2d::twin::{exact_field, render_direct, render_refine};

@@ -3,7 +3,7 @@
 
 use craterfield::field2d::{Graph, Level, Terrain};
 use craterfield::sim::projectile::{Flight, Sweep, fly};
-use craterfield::sim::settings::units;
+use craterfield::sim::units;
 use craterfield::sim::{Input, Settings, World, buttons};
 use glam::Vec2;
 

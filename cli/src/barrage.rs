@@ -1,7 +1,7 @@
 //! Scripted, deterministic barrages of explosions and fills: shells fall from the sky along
 //! slightly slanted paths, and each lands where a raycast meets the terrain.
 
-use craterfield::field2d::event::Event;
+use craterfield::field2d::Event;
 use craterfield::field2d::query::{RayOptions, raycast};
 use craterfield::field2d::terrain::Terrain;
 use craterfield::field2d::{Graph, Level};
@@ -11,7 +11,7 @@ use crate::rng::Rng;
 
 /// What a barrage did.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
-pub struct BarrageStats {
+pub(crate) struct BarrageStats {
     pub carves: usize,
     pub fills: usize,
     pub misses: usize,
@@ -19,7 +19,7 @@ pub struct BarrageStats {
 }
 
 /// The `i`-th event of the barrage with seed `seed`, aimed by a raycast into `terrain`.
-pub fn next_event(
+pub(crate) fn next_event(
     level: &Level,
     terrain: &Terrain<Graph>,
     rng: &mut Rng,
@@ -61,7 +61,12 @@ pub fn next_event(
 
 /// Fire `count` shells into `terrain`, one per tick from its current tick on (each aimed at
 /// the terrain as it is then).
-pub fn fire(level: &Level, terrain: &mut Terrain<Graph>, count: usize, seed: u64) -> BarrageStats {
+pub(crate) fn fire(
+    level: &Level,
+    terrain: &mut Terrain<Graph>,
+    count: usize,
+    seed: u64,
+) -> BarrageStats {
     let mut rng = Rng::new(seed);
     let mut stats = BarrageStats::default();
     for _ in 0..count {
@@ -71,7 +76,7 @@ pub fn fire(level: &Level, terrain: &mut Terrain<Graph>, count: usize, seed: u64
             stats.misses += 1;
             continue;
         };
-        let is_fill = matches!(event.kind, craterfield::field2d::event::EventKind::Fill);
+        let is_fill = matches!(event.kind, craterfield::field2d::EventKind::Fill);
         match terrain.apply(event) {
             Ok(()) if is_fill => stats.fills += 1,
             Ok(()) => stats.carves += 1,

@@ -35,7 +35,7 @@ struct Report {
     rays: usize,
 }
 
-pub fn field(json: bool, points: usize) -> Result<ExitCode, String> {
+pub(crate) fn field(json: bool, points: usize) -> Result<ExitCode, String> {
     let level = Level::default_level();
     let points = points.clamp(1_000, 50_000_000);
     let rays = (points / 20).max(100);
@@ -136,7 +136,7 @@ pub fn field(json: bool, points: usize) -> Result<ExitCode, String> {
 }
 
 /// The default level with `count` barrage events; returns the per-insert times (us).
-pub fn build(level: &Level, count: usize) -> Result<(Terrain<Graph>, Vec<f64>), String> {
+pub(crate) fn build(level: &Level, count: usize) -> Result<(Terrain<Graph>, Vec<f64>), String> {
     let mut terrain = level.terrain().map_err(|e| e.to_string())?;
     let mut rng = Rng::new(2024);
     let mut times = Vec::with_capacity(count);

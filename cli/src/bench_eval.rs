@@ -14,7 +14,7 @@ use std::time::Instant;
 use craterfield::field2d::import::graph_from_vm;
 use craterfield::field2d::simd::Backend;
 use craterfield::field2d::tape::Outputs;
-use craterfield::field2d::tape::image::{ImageOptions, inside_image};
+use craterfield::field2d::tape::{ImageOptions, inside_image};
 use craterfield::field2d::{Graph, Level, Sample, Terrain};
 use glam::Vec2;
 use serde::Serialize;
@@ -56,7 +56,7 @@ fn timed(f: impl FnOnce() -> Result<(), String>) -> Result<f64, String> {
 }
 
 /// What to measure.
-pub struct Options {
+pub(crate) struct Options {
     pub json: bool,
     pub points: usize,
     pub prospero: Option<PathBuf>,
@@ -80,7 +80,7 @@ fn backends(names: &[String]) -> Result<Vec<Backend>, String> {
         .collect()
 }
 
-pub fn eval(o: Options) -> Result<ExitCode, String> {
+pub(crate) fn eval(o: Options) -> Result<ExitCode, String> {
     let Options {
         json,
         points,
@@ -355,7 +355,7 @@ fn fusion_note(
     program: &craterfield::field2d::tape::Program,
     notes: &mut Vec<String>,
 ) -> Result<(), String> {
-    use craterfield::field2d::tape::fuse::FuseOptions;
+    use craterfield::field2d::tape::FuseOptions;
     let b = Backend::widest();
     let pts: Vec<Vec2> = (0..256 * 256)
         .map(|k| {

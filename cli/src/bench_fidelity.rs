@@ -21,7 +21,7 @@ use crate::fidelity_scenes::{self, NAMES, Scene};
 
 /// What to measure (the command's arguments).
 #[derive(clap::Args)]
-pub struct Options {
+pub(crate) struct Options {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -161,7 +161,7 @@ struct Report {
     notes: Vec<String>,
 }
 
-pub fn fidelity(options: &Options) -> Result<ExitCode, String> {
+pub(crate) fn fidelity(options: &Options) -> Result<ExitCode, String> {
     let prospero = options
         .prospero
         .clone()

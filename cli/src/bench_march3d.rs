@@ -16,7 +16,7 @@ use craterfield::march3d::compile::{CompileOptions, Optimization};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::scene::Scene;
 use craterfield::march3d::simd::Isa;
-use craterfield::march3d::{Camera, Plan};
+use craterfield::march3d::{Camera3d, Plan};
 use craterfield::visdiff::{DiffOptions, compare};
 use serde::Serialize;
 
@@ -24,7 +24,7 @@ use crate::march3d_cmd::{parse_size, plan_for};
 
 /// Options of `bench march3d`.
 #[derive(clap::Args, Debug, Clone)]
-pub struct Options {
+pub(crate) struct Options {
     /// Print one JSON object instead of tables.
     #[arg(long)]
     pub json: bool,
@@ -102,7 +102,7 @@ fn os_clock_ghz() -> Option<f64> {
 
 fn time_cpu(
     plan: &Plan,
-    cam: &Camera,
+    cam: &Camera3d,
     size: (u32, u32),
     isa: Isa,
     threads: usize,
@@ -267,7 +267,7 @@ fn emitter_rows(
 }
 
 /// Runs the benchmark.
-pub fn run(o: &Options) -> Result<ExitCode, String> {
+pub(crate) fn run(o: &Options) -> Result<ExitCode, String> {
     let (ghz, clock_source) = match (o.ghz, os_clock_ghz()) {
         (Some(g), _) => (g, "given with --ghz".to_string()),
         (None, Some(g)) => (g, "nominal clock from /proc/cpuinfo".to_string()),

@@ -19,7 +19,7 @@ use crate::barrage;
 
 /// Options of `bench render2d`.
 #[derive(clap::Args, Debug, Clone)]
-pub struct Options {
+pub(crate) struct Options {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -282,7 +282,7 @@ fn cpu_rows(
     ))
 }
 
-pub fn run(options: &Options) -> Result<ExitCode, String> {
+pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
     let (level, terrain) = scene(options.explosions)?;
     let palette: Vec<[u8; 3]> = level.materials().iter().map(|m| m.color).collect();
     let b = level.bounds();

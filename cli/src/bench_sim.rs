@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use craterfield::field2d::Level;
 use craterfield::field2d::Sdf;
-use craterfield::field2d::event::{Event, EventKind};
+use craterfield::field2d::{Event, EventKind};
 use craterfield::net::encode_events;
 use craterfield::net::wire::bytes_per_event;
 use craterfield::sim::{EVENT_CENTER_STEP, Input, Settings, World};
@@ -33,7 +33,7 @@ const MIN_MATCH_EVENTS: usize = 100;
 
 /// What to measure (the command's arguments).
 #[derive(clap::Args)]
-pub struct Options {
+pub(crate) struct Options {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -98,7 +98,7 @@ struct Report {
     release: bool,
 }
 
-pub fn sim(opts: Options) -> Result<ExitCode, String> {
+pub(crate) fn sim(opts: Options) -> Result<ExitCode, String> {
     let level = Level::default_level();
     let largest = opts.bodies.iter().copied().max().unwrap_or(0);
     let mut settings = Settings::default();

@@ -95,7 +95,7 @@ struct ImageInfo {
     renderer: String,
 }
 
-pub fn run(
+pub(crate) fn run(
     out: &Path,
     events: usize,
     width: u32,

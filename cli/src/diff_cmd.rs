@@ -10,7 +10,7 @@ use serde::Serialize;
 
 /// The command's arguments.
 #[derive(clap::Args)]
-pub struct Options {
+pub(crate) struct Options {
     /// The reference image.
     pub a: PathBuf,
     /// The image compared with it.
@@ -52,7 +52,7 @@ pub struct Options {
 
 /// The heat-map's source, as the command line names it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Heat {
+pub(crate) enum Heat {
     /// Largest channel difference, scaled to the largest in the pair.
     Pixel,
     /// FLIP perceptual error, 0..1.
@@ -72,7 +72,7 @@ struct JsonReport<'a> {
 /// Exit code for images that cannot be compared.
 const CANNOT_COMPARE: u8 = 2;
 
-pub fn run(options: &Options) -> Result<ExitCode, String> {
+pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
     match diff(options) {
         Ok(report) => Ok(if report.passed() {
             ExitCode::SUCCESS

@@ -12,8 +12,8 @@ use std::f32::consts::PI;
 use std::path::Path;
 
 use craterfield::field2d::import::graph_from_vm;
-use craterfield::field2d::node::{Node, P2};
 use craterfield::field2d::{Graph, Level, Terrain, TerrainOptions};
+use craterfield::field2d::{Node, P2};
 use craterfield::render2d::Camera;
 use craterfield::render2d::fidelity::{Feature, FeatureKind};
 use glam::Vec2;
@@ -21,7 +21,7 @@ use glam::Vec2;
 use crate::barrage;
 
 /// Band of every scene's terrain, in texels of the coarsest scale (1/32).
-pub const BAND_TEXELS: f32 = 3.0;
+pub(crate) const BAND_TEXELS: f32 = 3.0;
 /// Divisor of the coarsest scale measured.
 const COARSEST_DIVISOR: f32 = 32.0;
 /// Side of the synthetic scenes, world units and pixels.
@@ -34,7 +34,7 @@ const ANGLE_STEPS: usize = 18;
 const LEVEL_EXPLOSIONS: usize = 5_000;
 
 /// The scenes in the order the bench runs them.
-pub const NAMES: [&str; 8] = [
+pub(crate) const NAMES: [&str; 8] = [
     "thin-lines",
     "thin-gaps",
     "islands",
@@ -46,7 +46,7 @@ pub const NAMES: [&str; 8] = [
 ];
 
 /// A terrain, its view and its declared features (pixel coordinates of the camera).
-pub struct Scene {
+pub(crate) struct Scene {
     /// Name as the bench prints it.
     pub name: &'static str,
     /// The terrain.
@@ -61,7 +61,7 @@ pub struct Scene {
 
 /// Builds the scene called `name` (one of [`NAMES`]); `prospero` is the expression file,
 /// `seed` the level barrage's seed.
-pub fn build(name: &str, prospero: &Path, seed: u64) -> Result<Scene, String> {
+pub(crate) fn build(name: &str, prospero: &Path, seed: u64) -> Result<Scene, String> {
     match name {
         "thin-lines" => thin_lines(),
         "thin-gaps" => thin_gaps(),

@@ -9,7 +9,7 @@ use glam::Vec2;
 use image::RgbaImage;
 
 /// Player colours, by player index (wrapping).
-pub const PLAYER_COLORS: [[u8; 3]; 8] = [
+pub(crate) const PLAYER_COLORS: [[u8; 3]; 8] = [
     [230, 60, 50],
     [50, 120, 235],
     [250, 200, 40],
@@ -25,7 +25,7 @@ const DEBRIS_EDGE: [u8; 3] = [80, 80, 84];
 const OUTLINE: [u8; 3] = [20, 20, 24];
 
 /// The world as `world` holds it now, fitted to an image `width` pixels wide.
-pub fn render(level: &Level, world: &World, width: u32) -> RgbaImage {
+pub(crate) fn render(level: &Level, world: &World, width: u32) -> RgbaImage {
     let b = level.bounds();
     let camera = Camera::fit(b.min, b.max, width.clamp(64, 16384));
     let palette: Vec<[u8; 3]> = level.materials().iter().map(|m| m.color).collect();
@@ -167,7 +167,7 @@ fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
 }
 
 /// Counts of the bodies by kind: (vehicles, projectiles, debris).
-pub fn census(world: &World) -> (usize, usize, usize) {
+pub(crate) fn census(world: &World) -> (usize, usize, usize) {
     let mut n = (0, 0, 0);
     for b in world.bodies() {
         match b.kind {

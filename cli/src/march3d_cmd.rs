@@ -10,11 +10,11 @@ use craterfield::march3d::compile::{CompileOptions, Optimization, WorldCompiler}
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::scene::Scene;
 use craterfield::march3d::simd::Isa;
-use craterfield::march3d::{Camera, Plan};
+use craterfield::march3d::{Camera3d, Plan};
 
 /// Options of `march3d`.
 #[derive(clap::Args, Debug, Clone)]
-pub struct Options {
+pub(crate) struct Options {
     /// A builtin scene (scene0, mandelbulb, sparse, forest) or a RON scene file.
     #[arg(long, default_value = "scene0")]
     pub scene: String,
@@ -47,7 +47,7 @@ pub struct Options {
 }
 
 /// Parses `WxH`.
-pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("size `{s}` is not WxH"))?;
@@ -66,7 +66,11 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 /// The emit options of a preset name for `scene`.
-pub fn preset(scene: &Scene, name: Option<&str>, off: &[String]) -> Result<CompileOptions, String> {
+pub(crate) fn preset(
+    scene: &Scene,
+    name: Option<&str>,
+    off: &[String],
+) -> Result<CompileOptions, String> {
     let paper_lit = matches!(
         scene.lighting,
         craterfield::march3d::scene::Lighting::Paper(_)
@@ -96,11 +100,11 @@ pub fn preset(scene: &Scene, name: Option<&str>, off: &[String]) -> Result<Compi
 }
 
 /// The scene's plan and camera for an image of `size`.
-pub fn plan_for(
+pub(crate) fn plan_for(
     scene: &Scene,
     opts: &CompileOptions,
     size: (u32, u32),
-) -> Result<(Plan, Camera), String> {
+) -> Result<(Plan, Camera3d), String> {
     let camera = scene.camera.camera().map_err(|e| e.to_string())?;
     let mut opts = opts.clone();
     opts.aspect = size.0 as f32 / size.1 as f32;
@@ -187,7 +191,11 @@ fn run_inner(o: &Options) -> Result<(), String> {
     Ok(())
 }
 
-fn gpu_render(plan: &Plan, camera: &Camera, size: (u32, u32)) -> Result<(Vec<u8>, String), String> {
+fn gpu_render(
+    plan: &Plan,
+    camera: &Camera3d,
+    size: (u32, u32),
+) -> Result<(Vec<u8>, String), String> {
     use craterfield::gpu::GpuContext;
     use craterfield::march3d::gpu::Marcher;
     let ctx = GpuContext::new().map_err(|e| e.to_string())?;
@@ -202,6 +210,6 @@ fn gpu_render(plan: &Plan, camera: &Camera, size: (u32, u32)) -> Result<(Vec<u8>
 }
 
 /// Runs the command.
-pub fn run(o: &Options) -> Result<ExitCode, String> {
+pub(crate) fn run(o: &Options) -> Result<ExitCode, String> {
     run_inner(o).map(|()| ExitCode::SUCCESS)
 }

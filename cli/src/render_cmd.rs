@@ -11,9 +11,9 @@ use std::time::Instant;
 use craterfield::field2d::{Graph, Level, Terrain};
 use craterfield::gpu::GpuContext;
 use craterfield::gpu::READBACK_FORMAT;
+use craterfield::render2d::check_camera;
 use craterfield::render2d::gpu::TerrainRenderer;
 use craterfield::render2d::gpu::{Pipeline, render_to_image};
-use craterfield::render2d::lattice::check_camera;
 use craterfield::render2d::twin::{exact_field, render_direct, render_refine_overlay};
 use craterfield::render2d::{
     Camera, FieldImage, Reconstruction, RenderOptions, Scale, Upsample, field_image, render_twin,
@@ -34,7 +34,7 @@ const STRIPE_ROWS: u32 = 512;
 
 /// The command's arguments.
 #[derive(clap::Args, Debug)]
-pub struct Options {
+pub(crate) struct Options {
     /// The level (default: the embedded default level).
     #[arg(long)]
     pub level: Option<PathBuf>,
@@ -133,7 +133,7 @@ enum Mode {
     Exact,
 }
 
-pub fn run(options: &Options) -> Result<ExitCode, String> {
+pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
     let mode = parse_mode(options)?;
     let backend = match options.backend.as_str() {
         "gpu" => Backend::Gpu,

@@ -11,14 +11,14 @@ use craterfield::render2d::{Camera, RenderOptions};
 use image::RgbaImage;
 
 /// A rendered frame and the renderer that drew it.
-pub struct Frame {
+pub(crate) struct Frame {
     pub image: RgbaImage,
     /// `GPU (adapter)` or `CPU twin (why)`.
     pub renderer: String,
 }
 
 /// Renders on the GPU, falling back to the CPU twin when no adapter (or a GPU error).
-pub fn render(
+pub(crate) fn render(
     terrain: &Terrain<Graph>,
     palette: &[[u8; 3]],
     camera: &Camera,

@@ -10,7 +10,7 @@ use std::process::ExitCode;
 
 use craterfield::field2d::Level;
 use craterfield::net::{Replay, VerifyError, verify as verify_replay};
-use craterfield::sim::settings::units;
+use craterfield::sim::units;
 use craterfield::sim::{World, level_hash};
 
 use crate::frame;
@@ -41,7 +41,7 @@ fn seconds(replay: &Replay) -> f64 {
 }
 
 /// `replay verify`: re-simulates and compares every stored hash.
-pub fn verify(file: &Path, level: Option<&Path>) -> Result<ExitCode, String> {
+pub(crate) fn verify(file: &Path, level: Option<&Path>) -> Result<ExitCode, String> {
     let (replay, _, _) = load(file)?;
     let level = load_level(level)?;
     match verify_replay(&replay, &level) {
@@ -70,7 +70,7 @@ pub fn verify(file: &Path, level: Option<&Path>) -> Result<ExitCode, String> {
 }
 
 /// `replay info`: what the file holds.
-pub fn info(file: &Path, level: Option<&Path>) -> Result<ExitCode, String> {
+pub(crate) fn info(file: &Path, level: Option<&Path>) -> Result<ExitCode, String> {
     let (replay, size, version) = load(file)?;
     let level = load_level(level)?;
     let level_name = level.name().to_string();
@@ -141,7 +141,7 @@ pub fn info(file: &Path, level: Option<&Path>) -> Result<ExitCode, String> {
 }
 
 /// `replay render`: re-simulates to `tick` (the last tick by default) and writes a PNG.
-pub fn render(
+pub(crate) fn render(
     file: &Path,
     tick: Option<u32>,
     out: &Path,
@@ -171,7 +171,7 @@ pub fn render(
 
 /// The world of replay `file` (recorded on `level`) re-simulated to `tick` (default: the
 /// last), warning on stderr where it diverges from the recorded hashes.
-pub fn world_at(file: &Path, tick: Option<u32>, level: &Level) -> Result<World, String> {
+pub(crate) fn world_at(file: &Path, tick: Option<u32>, level: &Level) -> Result<World, String> {
     simulate_to(file, tick, level).map(|(world, _, _)| world)
 }
 

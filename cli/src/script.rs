@@ -6,10 +6,10 @@
 //! vehicle may fire), but only the inputs go into the replay: re-simulating them gives
 //! the same match whatever the script would do.
 
+use craterfield::field2d::Event;
 use craterfield::field2d::Level;
-use craterfield::field2d::event::Event;
 use craterfield::net::{Recorder, Replay};
-use craterfield::sim::settings::units;
+use craterfield::sim::units;
 use craterfield::sim::{BodyKind, Input, Settings, World, buttons, level_hash};
 
 use crate::rng::Rng;
@@ -26,7 +26,7 @@ struct Plan {
 }
 
 /// The scripted players of one match.
-pub struct Script {
+pub(crate) struct Script {
     rng: Rng,
     held: Vec<Input>,
     plans: Vec<Option<Plan>>,
@@ -34,7 +34,7 @@ pub struct Script {
 
 impl Script {
     /// A script for `players` players; the same seed gives the same match.
-    pub fn new(seed: u64, players: usize) -> Script {
+    pub(crate) fn new(seed: u64, players: usize) -> Script {
         Script {
             rng: Rng::new(seed),
             held: vec![Input::default(); players],
@@ -43,7 +43,7 @@ impl Script {
     }
 
     /// The inputs of the next tick of `world`, one per player.
-    pub fn next_row(&mut self, world: &World) -> Vec<Input> {
+    pub(crate) fn next_row(&mut self, world: &World) -> Vec<Input> {
         let settings = *world.settings();
         let mut row = Vec::with_capacity(self.held.len());
         for p in 0..self.held.len() {
@@ -153,7 +153,7 @@ fn lob(
 }
 
 /// A played and recorded match.
-pub struct Played {
+pub(crate) struct Played {
     /// The world after the last tick.
     pub world: World,
     /// The recording.
@@ -164,14 +164,14 @@ pub struct Played {
 
 impl Played {
     /// The terrain events the match produced (it started from the pristine level).
-    pub fn events(&self) -> &[Event] {
+    pub(crate) fn events(&self) -> &[Event] {
         self.world.terrain().events()
     }
 }
 
 /// Plays `ticks` ticks of a scripted match on `level`, recording a state hash every
 /// `hash_interval` ticks.
-pub fn play(
+pub(crate) fn play(
     level: &Level,
     settings: Settings,
     players: u8,

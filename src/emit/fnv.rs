@@ -5,19 +5,19 @@
 
 /// FNV-1a over bytes, 64-bit variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Fnv64(u64);
+pub(crate) struct Fnv64(u64);
 
 impl Fnv64 {
     const OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0000_0100_0000_01b3;
 
     /// A hasher in its initial state.
-    pub fn new() -> Fnv64 {
+    pub(crate) fn new() -> Fnv64 {
         Fnv64(Self::OFFSET_BASIS)
     }
 
     /// Mix in bytes.
-    pub fn bytes(&mut self, bytes: &[u8]) -> &mut Self {
+    pub(crate) fn bytes(&mut self, bytes: &[u8]) -> &mut Self {
         for &b in bytes {
             self.0 ^= u64::from(b);
             self.0 = self.0.wrapping_mul(Self::PRIME);
@@ -26,22 +26,22 @@ impl Fnv64 {
     }
 
     /// Mix in a `u32` (little-endian bytes).
-    pub fn u32(&mut self, v: u32) -> &mut Self {
+    pub(crate) fn u32(&mut self, v: u32) -> &mut Self {
         self.bytes(&v.to_le_bytes())
     }
 
     /// Mix in a `u64` (little-endian bytes).
-    pub fn u64(&mut self, v: u64) -> &mut Self {
+    pub(crate) fn u64(&mut self, v: u64) -> &mut Self {
         self.bytes(&v.to_le_bytes())
     }
 
     /// Mix in an `f32` by its bits, so `0.0` and `-0.0` differ and the value is exact.
-    pub fn f32(&mut self, v: f32) -> &mut Self {
+    pub(crate) fn f32(&mut self, v: f32) -> &mut Self {
         self.u32(v.to_bits())
     }
 
     /// The hash so far.
-    pub fn finish(&self) -> u64 {
+    pub(crate) fn finish(&self) -> u64 {
         self.0
     }
 }

@@ -5,7 +5,7 @@
 //! feature; the renderers concatenate the emitted text with their hand-written WGSL.
 //!
 //! * [`wgsl`]: exact number literals and `em_`-prefixed names (generic).
-//! * [`fnv`]: the stable hash behind fingerprints and keys (generic).
+//! * `fnv`: the stable hash behind fingerprints and keys (generic).
 //! * [`terrain2d`]: [`TerrainEmitter`], a 2D level graph to `base_sample`.
 //! * [`cull`]: which sub-graphs a view cannot see, and why that is safe.
 //! * [`plan3d`]: the emitted form of a 3D world for one camera, which `march3d::compile`
@@ -15,7 +15,7 @@ mod codegen2d;
 pub mod codegen3d;
 pub mod cull;
 mod fingerprint2d;
-pub mod fnv;
+pub(crate) mod fnv;
 mod helpers2d;
 pub mod plan3d;
 pub mod terrain2d;

@@ -518,7 +518,7 @@ impl Prim {
 /// tan_half_fov` and `y = (1 - 2 (j + 0.5) / H) * tan_half_fov` (the reference paper's
 /// rays).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Camera {
+pub struct Camera3d {
     /// Eye position.
     pub position: Vec3,
     /// Unit view direction.
@@ -531,18 +531,18 @@ pub struct Camera {
     pub tan_half_fov: f32,
 }
 
-impl Camera {
+impl Camera3d {
     /// A camera at `position` looking along `forward` with `up` roughly up and a vertical
     /// field of view of `fov_deg` degrees; `None` when the vectors are degenerate (zero,
     /// parallel, not finite) or the angle is not in (0, 180).
-    pub fn looking(position: Vec3, forward: Vec3, up: Vec3, fov_deg: f32) -> Option<Camera> {
+    pub fn looking(position: Vec3, forward: Vec3, up: Vec3, fov_deg: f32) -> Option<Camera3d> {
         if !(position.is_finite() && fov_deg > 0.0 && fov_deg < 180.0) {
             return None;
         }
         let forward = forward.try_normalize()?;
         let right = up.cross(forward).try_normalize()?;
         let up = forward.cross(right);
-        Some(Camera {
+        Some(Camera3d {
             position,
             forward,
             right,

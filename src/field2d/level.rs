@@ -2,7 +2,7 @@
 //! material palette and spawn points, and their validation.
 //!
 //! ```
-//! use craterfield::field2d::{Level, Sdf};
+//! use craterfield::prelude::*;
 //! let level = Level::from_ron(r#"Level(
 //!     name: "pond",
 //!     bounds: (min: (0.0, 0.0), max: (512.0, 256.0)),
@@ -30,7 +30,7 @@ use super::terrain::{Terrain, TerrainError, TerrainOptions};
 /// Largest accepted level file.
 pub const MAX_LEVEL_BYTES: usize = 16 * 1024 * 1024;
 /// Largest accepted world coordinate magnitude (keeps quantized event coordinates exact).
-pub const MAX_WORLD_COORDINATE: f32 = 65_536.0;
+pub(crate) const MAX_WORLD_COORDINATE: f32 = 65_536.0;
 
 /// The default level, compiled into the library.
 pub const DEFAULT_LEVEL_RON: &str = include_str!("../../levels/default.ron");

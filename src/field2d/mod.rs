@@ -1,25 +1,25 @@
 //! The 2D terrain field: level graph, level format, explosion grid and collision queries.
 
-pub mod aabb;
+pub(crate) mod aabb;
 pub mod contour;
 
-pub mod error;
+pub(crate) mod error;
 pub mod eval;
-pub mod event;
+pub(crate) mod event;
 pub(crate) mod exec;
 pub mod graph;
 pub mod grid;
 pub mod import;
-pub mod level;
+pub(crate) mod level;
 #[cfg(feature = "mesh")]
 pub mod mesh;
-pub mod node;
+pub(crate) mod node;
 pub mod noise;
 pub mod primitives;
 
 pub mod query;
-pub mod sample;
-pub mod sdf;
+pub(crate) mod sample;
+pub(crate) mod sdf;
 pub mod simd;
 pub mod tape;
 pub mod terrain;
@@ -30,8 +30,8 @@ pub use error::LevelError;
 pub use event::{Event, EventError, EventKind};
 pub use graph::{Exactness, Graph, GraphLimits, NodeId, NodeInfo};
 pub use grid::{CellState, GridStats, MaterialSource};
-pub use level::{Level, LevelFile, MaterialDef, WorldBounds};
-pub use node::{Axis, Node};
+pub use level::{DEFAULT_LEVEL_RON, Level, LevelFile, MAX_LEVEL_BYTES, MaterialDef, WorldBounds};
+pub use node::{Axis, Node, P2};
 pub use sample::{MaterialId, Sample};
 pub use sdf::Sdf;
 pub use terrain::{Terrain, TerrainError, TerrainOptions};

@@ -20,4 +20,4 @@ pub mod noise;
 pub mod scene;
 pub mod simd;
 
-pub use crate::emit::plan3d::{Camera, Plan};
+pub use crate::emit::plan3d::{Camera3d, Plan};

@@ -23,7 +23,7 @@ use glam::{Mat3, Vec3};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::emit::plan3d::{Camera, Fbm, PointLight, PrimKind};
+use crate::emit::plan3d::{Camera3d, Fbm, PointLight, PrimKind};
 
 /// Largest accepted scene file.
 pub const MAX_SCENE_BYTES: usize = 4 * 1024 * 1024;
@@ -118,8 +118,8 @@ fn default_up() -> Vec3 {
 
 impl CameraSpec {
     /// The camera, or an error naming the degenerate part.
-    pub fn camera(&self) -> Result<Camera, SceneError> {
-        Camera::looking(
+    pub fn camera(&self) -> Result<Camera3d, SceneError> {
+        Camera3d::looking(
             self.position,
             self.look_at - self.position,
             self.up,

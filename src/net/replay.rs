@@ -49,7 +49,7 @@
 //! tick `T` is [`World::state_hash`] once [`World::tick`] is `T`; a [`Recorder`] stores one
 //! every `hash_interval` ticks and one for the final tick.
 //!
-//! Varints are described in [`super::codec`].
+//! Varints are described in `super::codec`.
 //!
 //! # Decoding
 //!
@@ -85,12 +85,12 @@ const MIN_HASH_ENTRY: usize = 9;
 
 /// Bit of each field in a run's field mask, in encoding order.
 mod field {
-    pub const AIM: u8 = 1 << 0;
-    pub const BUTTONS: u8 = 1 << 1;
-    pub const DRIVE: u8 = 1 << 2;
-    pub const POWER: u8 = 1 << 3;
-    pub const WEAPON: u8 = 1 << 4;
-    pub const ALL: u8 = AIM | BUTTONS | DRIVE | POWER | WEAPON;
+    pub(super) const AIM: u8 = 1 << 0;
+    pub(super) const BUTTONS: u8 = 1 << 1;
+    pub(super) const DRIVE: u8 = 1 << 2;
+    pub(super) const POWER: u8 = 1 << 3;
+    pub(super) const WEAPON: u8 = 1 << 4;
+    pub(super) const ALL: u8 = AIM | BUTTONS | DRIVE | POWER | WEAPON;
 }
 
 /// A recorded match: everything needed to re-simulate it and check the result.
@@ -494,9 +494,8 @@ fn decode_hashes(r: &mut Reader<'_>, ticks: u32) -> Result<Vec<(u32, u64)>, Deco
 /// Records a match as it is played, producing a [`Replay`].
 ///
 /// ```
-/// use craterfield::field2d::Level;
-/// use craterfield::net::Recorder;
-/// use craterfield::sim::{Input, Settings, World, level_hash};
+/// use craterfield::prelude::*;
+/// use craterfield::sim::level_hash;
 ///
 /// let level = Level::default_level();
 /// let settings = Settings::default();

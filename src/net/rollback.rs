@@ -63,11 +63,11 @@ pub type SyncTestSession = ggrs::SyncTestSession<GgrsConfig>;
 /// A GGRS session builder for the simulation.
 pub type SessionBuilder = ggrs::SessionBuilder<GgrsConfig>;
 
-/// Why a GGRS request could not be fulfilled (or, for [`RollbackError::Ggrs`], why a
+/// Why a GGRS request could not be fulfilled (or, for [`SessionError::Ggrs`], why a
 /// session call failed).
 #[derive(Debug, Error)]
 #[non_exhaustive]
-pub enum RollbackError {
+pub enum SessionError {
     /// GGRS asked to load a frame whose cell holds no state.
     #[error("GGRS asked to load frame {frame}, but no state was saved for it")]
     EmptyState {
@@ -102,11 +102,11 @@ pub fn checksum(world: &World) -> u128 {
     u128::from(world.state_hash())
 }
 
-fn check_frame(world: &World, frame: Frame) -> Result<(), RollbackError> {
+fn check_frame(world: &World, frame: Frame) -> Result<(), SessionError> {
     if i64::from(world.tick()) == i64::from(frame) {
         Ok(())
     } else {
-        Err(RollbackError::FrameMismatch {
+        Err(SessionError::FrameMismatch {
             frame,
             tick: world.tick(),
         })
@@ -121,7 +121,7 @@ fn check_frame(world: &World, frame: Frame) -> Result<(), RollbackError> {
 ///   input is [`Input::default`] whatever GGRS passed.
 ///
 /// Saves and loads check that the world is at the tick GGRS names.
-pub fn handle_request(world: &mut World, request: Request) -> Result<(), RollbackError> {
+pub fn handle_request(world: &mut World, request: Request) -> Result<(), SessionError> {
     match request {
         GgrsRequest::SaveGameState { cell, frame } => {
             check_frame(world, frame)?;
@@ -129,14 +129,14 @@ pub fn handle_request(world: &mut World, request: Request) -> Result<(), Rollbac
         }
         GgrsRequest::LoadGameState { cell, frame } => {
             {
-                let snapshot = cell.data().ok_or(RollbackError::EmptyState { frame })?;
+                let snapshot = cell.data().ok_or(SessionError::EmptyState { frame })?;
                 world.restore(&snapshot)?;
             }
             check_frame(world, frame)?;
         }
         GgrsRequest::AdvanceFrame { inputs } => {
             if inputs.len() > MAX_PLAYERS {
-                return Err(RollbackError::TooManyPlayers {
+                return Err(SessionError::TooManyPlayers {
                     count: inputs.len(),
                 });
             }
@@ -155,7 +155,7 @@ pub fn handle_request(world: &mut World, request: Request) -> Result<(), Rollbac
 
 /// Fulfils GGRS requests on `world`, in order (as GGRS requires), stopping at the first
 /// that fails. See [`handle_request`].
-pub fn handle_requests(world: &mut World, requests: Vec<Request>) -> Result<(), RollbackError> {
+pub fn handle_requests(world: &mut World, requests: Vec<Request>) -> Result<(), SessionError> {
     for request in requests {
         handle_request(world, request)?;
     }
@@ -265,12 +265,12 @@ mod tests {
         .unwrap_err();
         assert!(matches!(
             err,
-            RollbackError::FrameMismatch { frame: 3, tick: 0 }
+            SessionError::FrameMismatch { frame: 3, tick: 0 }
         ));
         // GGRS stamps a cell's frame when it is saved; a fresh cell holds nothing.
         let err =
             handle_request(&mut w, GgrsRequest::LoadGameState { cell, frame: 0 }).unwrap_err();
-        assert!(matches!(err, RollbackError::EmptyState { frame: 0 }));
+        assert!(matches!(err, SessionError::EmptyState { frame: 0 }));
         let err = handle_request(
             &mut w,
             advance(&[(Input::default(), InputStatus::Confirmed); MAX_PLAYERS + 1]),

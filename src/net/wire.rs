@@ -26,7 +26,7 @@
 //! **Snapshot body**: the level hash (`u64 LE`), the terrain's tick (`varint`), then an
 //! event list of every event the terrain holds.
 //!
-//! **Event list** (varints and zigzag as in [`super::codec`]):
+//! **Event list** (varints and zigzag as in `super::codec`):
 //!
 //! - `varint` event count `N`; if `N` is 0 nothing follows;
 //! - `u8` quantum shift `q` (0 to 24): every centre coordinate is a multiple of `2^q`;

@@ -16,16 +16,16 @@ use super::options::Scale;
 
 /// Texels kept beyond the view on every side: bicubic taps read 2 texels around a pixel,
 /// reconstruction 1 more.
-pub const MARGIN: i32 = 3;
+pub(crate) const MARGIN: i32 = 3;
 
 /// Largest output image accepted, per axis (pixels).
-pub const MAX_IMAGE_SIDE: u32 = 16_384;
+pub(crate) const MAX_IMAGE_SIDE: u32 = 16_384;
 
 /// Why a camera cannot be rendered.
 #[derive(Clone, Copy, Debug, PartialEq, Error)]
 #[non_exhaustive]
 pub enum LatticeError {
-    /// The image is empty or larger than [`MAX_IMAGE_SIDE`] on some axis.
+    /// The image is empty or larger than `MAX_IMAGE_SIDE` on some axis.
     #[error(
         "image size {width}x{height} must be between 1x1 and {MAX_IMAGE_SIDE}x{MAX_IMAGE_SIDE}"
     )]
@@ -67,7 +67,7 @@ pub struct Lattice {
 }
 
 impl Lattice {
-    /// The lattice covering `camera`'s view plus [`MARGIN`] texels at `scale`.
+    /// The lattice covering `camera`'s view plus `MARGIN` texels at `scale`.
     pub fn new(camera: &Camera, scale: Scale) -> Result<Lattice, LatticeError> {
         check_camera(camera)?;
         let upp = camera.units_per_pixel;

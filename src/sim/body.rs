@@ -90,7 +90,7 @@ pub struct Body {
     pub surface: Vec2,
     /// Clearance to the terrain at the last contact check (`+inf`-like when far).
     pub clearance: f32,
-    /// Samples of the last contact check, per probe point (see [`ProbeCache`]).
+    /// Samples of the last contact check, per probe point (see `ProbeCache`).
     #[serde(skip)]
     pub probes: [Option<ProbeCache>; 2],
 }

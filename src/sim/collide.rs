@@ -17,7 +17,7 @@ const PUSH_APART: f32 = 0.5;
 /// A pair of overlapping bodies, by index, with the contact normal (from `a` to `b`) and
 /// the overlap depth.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Overlap {
+pub(crate) struct Overlap {
     /// First body (lower index).
     pub a: usize,
     /// Second body.
@@ -30,7 +30,7 @@ pub struct Overlap {
 
 /// A reusable broadphase: cell keys sorted with body indices.
 #[derive(Clone, Debug, Default)]
-pub struct Broadphase {
+pub(crate) struct Broadphase {
     keys: Vec<(u64, u32)>,
 }
 
@@ -47,7 +47,7 @@ fn key(cx: i32, cy: i32) -> u64 {
 
 impl Broadphase {
     /// Every overlapping pair, in ascending `(a, b)` order, into `out`.
-    pub fn overlaps(&mut self, bodies: &[Body], out: &mut Vec<Overlap>) {
+    pub(crate) fn overlaps(&mut self, bodies: &[Body], out: &mut Vec<Overlap>) {
         out.clear();
         let reach = bodies.iter().map(Body::bounding_radius).fold(0.0, max);
         if bodies.len() < 2 || reach <= 0.0 {
@@ -95,7 +95,7 @@ fn near(a: &Body, b: &Body) -> bool {
 }
 
 /// Closest points of segments `p0-p1` and `q0-q1`.
-pub fn closest_points(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> (Vec2, Vec2) {
+pub(crate) fn closest_points(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> (Vec2, Vec2) {
     let d1 = p1 - p0;
     let d2 = q1 - q0;
     let r = p0 - q0;
@@ -139,7 +139,7 @@ pub fn closest_points(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> (Vec2, Vec2) {
 }
 
 /// The overlap of two bodies, if any (indices left 0).
-pub fn overlap(a: &Body, b: &Body) -> Option<Overlap> {
+pub(crate) fn overlap(a: &Body, b: &Body) -> Option<Overlap> {
     let (a0, a1) = a.segment();
     let (b0, b1) = b.segment();
     let (pa, pb) = closest_points(a0, a1, b0, b1);
@@ -166,7 +166,7 @@ pub fn overlap(a: &Body, b: &Body) -> Option<Overlap> {
 
 /// Pushes an overlapping pair apart and removes their approach velocity (with
 /// restitution and friction), split by inverse mass.
-pub fn resolve(a: &mut Body, b: &mut Body, o: &Overlap) {
+pub(crate) fn resolve(a: &mut Body, b: &mut Body, o: &Overlap) {
     let total = a.inv_mass + b.inv_mass;
     if total <= 0.0 {
         return;

@@ -17,9 +17,9 @@ use crate::field2d::Sample;
 use super::body::Body;
 
 /// Penetration left alone (not pushed out), world units: keeps resting contacts still.
-pub const SLOP: f32 = 0.02;
+pub(crate) const SLOP: f32 = 0.02;
 /// A body within this clearance of a surface is grounded (can jump and drive).
-pub const GROUND_RANGE: f32 = 1.0;
+pub(crate) const GROUND_RANGE: f32 = 1.0;
 /// The fraction of penetration beyond the slop removed per tick.
 const PUSH_OUT: f32 = 0.4;
 /// Velocity iterations over a body's contacts.
@@ -32,7 +32,7 @@ const REST_SPEED: f32 = 0.5;
 
 /// Where the body samples the field: the centre of a circle, the two ends of a capsule.
 /// Returns the points and how many are used.
-pub fn probe_points(b: &Body) -> ([Vec2; 2], usize) {
+pub(crate) fn probe_points(b: &Body) -> ([Vec2; 2], usize) {
     if b.half_length > 0.0 {
         let (a, c) = b.segment();
         ([a, c], 2)
@@ -42,7 +42,7 @@ pub fn probe_points(b: &Body) -> ([Vec2; 2], usize) {
 }
 
 /// Unit normal from a sample's gradient; `None` where the gradient vanishes.
-pub fn normal_of(s: &Sample) -> Option<Vec2> {
+pub(crate) fn normal_of(s: &Sample) -> Option<Vec2> {
     let g = s.gradient;
     let len2 = g.x * g.x + g.y * g.y;
     let usable = len2 > 1e-12 && len2.is_finite();
@@ -66,7 +66,7 @@ struct Contact {
 /// Solves the body's terrain contacts from its probe samples. `lipschitz` scales distances
 /// to conservative clearances. Updates `ground`, `surface` and `clearance`, and the
 /// velocity.
-pub fn solve(b: &mut Body, samples: &[Sample], lipschitz: f32, dt: f32) {
+pub(crate) fn solve(b: &mut Body, samples: &[Sample], lipschitz: f32, dt: f32) {
     let mut contacts = [None::<Contact>; 2];
     let mut clearance = f32::MAX;
     let mut surface = Vec2::ZERO;

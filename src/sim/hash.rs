@@ -78,7 +78,7 @@ impl StateHasher {
 }
 
 /// Hash of a byte string with a seed.
-pub fn hash_bytes(seed: u64, b: &[u8]) -> u64 {
+pub(crate) fn hash_bytes(seed: u64, b: &[u8]) -> u64 {
     let mut h = StateHasher::new(seed);
     h.bytes(b);
     h.finish()

@@ -17,7 +17,7 @@ pub mod buttons {
 }
 
 /// Number of weapons ([`Input::weapon`] must be below it).
-pub const WEAPON_COUNT: u8 = 2;
+pub(crate) const WEAPON_COUNT: u8 = 2;
 
 /// What a player does during one tick.
 ///

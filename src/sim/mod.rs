@@ -9,17 +9,17 @@
 //! desync checks; [`World::snapshot`] and [`World::restore`] cost O(bodies + terrain changes
 //! since the snapshot), never O(terrain).
 
-pub mod body;
-pub mod collide;
-pub mod contact;
-pub mod hash;
-pub mod input;
+pub(crate) mod body;
+pub(crate) mod collide;
+pub(crate) mod contact;
+pub(crate) mod hash;
+pub(crate) mod input;
 pub mod projectile;
-pub mod settings;
-pub mod world;
+pub(crate) mod settings;
+pub(crate) mod world;
 
 pub use body::{Body, BodyKind};
 pub use hash::StateHasher;
 pub use input::{Input, InputError, buttons};
-pub use settings::{Settings, SettingsError, VehicleSettings, WeaponSettings};
+pub use settings::{Settings, SettingsError, VehicleSettings, WeaponSettings, units};
 pub use world::{EVENT_CENTER_STEP, MAX_PLAYERS, SimError, Snapshot, World, level_hash};

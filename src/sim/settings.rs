@@ -10,7 +10,7 @@ use thiserror::Error;
 use crate::det::quant::{self, FIXED_MAX, FIXED_ONE};
 
 /// A fixed-point number (1/256 unit) as settings store it.
-pub type Fixed = i32;
+pub(crate) type Fixed = i32;
 
 /// A vehicle's chassis and handling.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]

@@ -3,10 +3,10 @@
 #![allow(dead_code)]
 
 use craterfield::sim::Input;
-use craterfield::sim::input::buttons::{FIRE, JUMP, STICK};
+use craterfield::sim::buttons::{FIRE, JUMP, STICK};
 
 /// One SplitMix64 step: a well-mixed function of `x`.
-pub fn splitmix64(mut x: u64) -> u64 {
+pub(crate) fn splitmix64(mut x: u64) -> u64 {
     x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
     x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
@@ -14,23 +14,23 @@ pub fn splitmix64(mut x: u64) -> u64 {
 }
 
 /// A SplitMix64 stream.
-pub struct Rng(pub u64);
+pub(crate) struct Rng(pub u64);
 
 impl Rng {
     /// The next 64 bits.
-    pub fn next(&mut self) -> u64 {
+    pub(crate) fn next(&mut self) -> u64 {
         let z = splitmix64(self.0);
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         z
     }
 
     /// Uniform-ish in `0..n` (`n > 0`).
-    pub fn below(&mut self, n: u64) -> u64 {
+    pub(crate) fn below(&mut self, n: u64) -> u64 {
         self.next() % n
     }
 
     /// Uniform in `[0, 1)`, 24 bits.
-    pub fn unit(&mut self) -> f32 {
+    pub(crate) fn unit(&mut self) -> f32 {
         (self.next() >> 40) as f32 / (1u64 << 24) as f32
     }
 }
@@ -39,7 +39,7 @@ impl Rng {
 /// weapon and power hold for segments of 24 frames; fire is pressed on about a quarter of
 /// the frames (a new shot every few ticks with the lowered cooldowns), jumps and stick
 /// toggles now and then.
-pub fn scripted_input(seed: u64, player: usize, frame: u32) -> Input {
+pub(crate) fn scripted_input(seed: u64, player: usize, frame: u32) -> Input {
     let segment = splitmix64(seed ^ ((player as u64) << 40) ^ u64::from(frame / 24));
     let tick = splitmix64(segment ^ (u64::from(frame) << 20) ^ 0x5eed);
     // Mostly down and sideways (craters in the ground nearby), sometimes anywhere.

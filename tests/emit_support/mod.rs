@@ -9,7 +9,7 @@ use craterfield::field2d::{Aabb, Axis, Graph, Level, Node};
 use glam::Vec2;
 
 /// The example levels: (file stem, graph, world bounds).
-pub fn example_levels() -> Vec<(String, Graph, Aabb)> {
+pub(crate) fn example_levels() -> Vec<(String, Graph, Aabb)> {
     ["default", "caverns", "skyrealm"]
         .iter()
         .map(|name| {
@@ -24,7 +24,7 @@ pub fn example_levels() -> Vec<(String, Graph, Aabb)> {
 
 /// Where the prospero expression is looked for: `CRATERFIELD_PROSPERO`, else the vendored copy
 /// under `tests/data`.
-pub fn prospero_path() -> PathBuf {
+pub(crate) fn prospero_path() -> PathBuf {
     std::env::var_os("CRATERFIELD_PROSPERO")
         .map(PathBuf::from)
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/prospero.vm"))
@@ -32,7 +32,7 @@ pub fn prospero_path() -> PathBuf {
 
 /// The prospero expression as a graph, or `None` (reported as skipped, an error under CI)
 /// when the file is not there.
-pub fn prospero_graph() -> Option<Graph> {
+pub(crate) fn prospero_graph() -> Option<Graph> {
     let path = prospero_path();
     match std::fs::read_to_string(&path) {
         Ok(text) => Some(graph_from_vm(&text).expect("prospero.vm imports")),
@@ -282,7 +282,7 @@ fn domain_and_more() -> Vec<Node> {
 }
 
 /// A graph with every `Node` variant (and `Triangle`, `Ref` resolved), materials 0-4.
-pub fn every_variant_graph() -> Graph {
+pub(crate) fn every_variant_graph() -> Graph {
     let mut nodes = primitives();
     nodes.extend(operators());
     nodes.extend(domain_and_more());
@@ -300,12 +300,12 @@ pub fn every_variant_graph() -> Graph {
 }
 
 /// The region the every-variant graph is laid out in.
-pub fn every_variant_bounds() -> Aabb {
+pub(crate) fn every_variant_bounds() -> Aabb {
     Aabb::new(Vec2::splat(-200.0), Vec2::splat(200.0))
 }
 
 /// Islands 1000 units apart along x, each a small union of its own.
-pub fn islands_graph() -> Graph {
+pub(crate) fn islands_graph() -> Graph {
     let island = |x: f32, m: u16| {
         paint(
             m,
@@ -331,11 +331,11 @@ pub fn islands_graph() -> Graph {
 }
 
 /// SplitMix64 stream for test points.
-pub struct Rng(pub u64);
+pub(crate) struct Rng(pub u64);
 
 impl Rng {
     /// Uniform in `[0, 1)`.
-    pub fn unit(&mut self) -> f32 {
+    pub(crate) fn unit(&mut self) -> f32 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -344,7 +344,7 @@ impl Rng {
     }
 
     /// Uniform in the box.
-    pub fn point_in(&mut self, b: &Aabb) -> Vec2 {
+    pub(crate) fn point_in(&mut self, b: &Aabb) -> Vec2 {
         Vec2::new(
             b.min.x + (b.max.x - b.min.x) * self.unit(),
             b.min.y + (b.max.y - b.min.y) * self.unit(),

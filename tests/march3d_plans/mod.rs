@@ -7,12 +7,12 @@ use craterfield::emit::plan3d::{
     AoMode, Fbm, Guard, Hash, Lift, March, Material, Node, PaperShading, Plan, PointLight, Prim,
     PrimKind, Shading, ShadowMode, Shape, Sphere, TerrainPlan, WorldShading,
 };
-use craterfield::march3d::Camera;
+use craterfield::march3d::Camera3d;
 use craterfield::march3d::scene::rotation_degrees;
 use glam::Vec3;
 
 /// The reference implementation's march settings.
-pub fn paper_march() -> March {
+pub(crate) fn paper_march() -> March {
     March {
         max_steps: 3000,
         hit: 5.0e-6,
@@ -62,18 +62,18 @@ fn mat(r: f32, g: f32, b: f32, reflectivity: f32) -> Material {
 }
 
 /// The paper's scene0 camera: origin, looking +z, fov 30.
-pub fn scene0_camera() -> Camera {
-    Camera::looking(Vec3::ZERO, Vec3::Z, Vec3::Y, 30.0).expect("camera")
+pub(crate) fn scene0_camera() -> Camera3d {
+    Camera3d::looking(Vec3::ZERO, Vec3::Z, Vec3::Y, 30.0).expect("camera")
 }
 
 /// The paper's Mandelbulb camera: origin, looking +z, fov 25.
-pub fn mandelbulb_camera() -> Camera {
-    Camera::looking(Vec3::ZERO, Vec3::Z, Vec3::Y, 25.0).expect("camera")
+pub(crate) fn mandelbulb_camera() -> Camera3d {
+    Camera3d::looking(Vec3::ZERO, Vec3::Z, Vec3::Y, 25.0).expect("camera")
 }
 
 /// The paper's scene0 (issue 6): plane, rotated box, reflective sphere, capped cone, torus,
 /// octahedron, one light, soft shadows.
-pub fn scene0() -> Plan {
+pub(crate) fn scene0() -> Plan {
     let plane = Prim::at(
         Vec3::ZERO,
         PrimKind::Plane {
@@ -151,7 +151,7 @@ pub fn scene0() -> Plan {
 }
 
 /// The paper's Mandelbulb scene: plane y = -1.5 and a power-8 bulb at (0, 0, 6).
-pub fn mandelbulb() -> Plan {
+pub(crate) fn mandelbulb() -> Plan {
     let plane = Prim::at(
         Vec3::ZERO,
         PrimKind::Plane {
@@ -194,8 +194,8 @@ pub fn mandelbulb() -> Plan {
 }
 
 /// A camera over [`world`]: at (0, 4, -6) looking down the valley.
-pub fn world_camera() -> Camera {
-    Camera::looking(
+pub(crate) fn world_camera() -> Camera3d {
+    Camera3d::looking(
         Vec3::new(0.0, 4.0, -6.0),
         Vec3::new(0.0, -0.25, 1.0),
         Vec3::Y,
@@ -206,7 +206,7 @@ pub fn world_camera() -> Camera {
 
 /// Which shader-side switches a [`world`] plan uses.
 #[derive(Clone, Copy, Debug)]
-pub struct WorldSwitches {
+pub(crate) struct WorldSwitches {
     /// Guards, nearest rows, material IDs, adaptive AO, terrain shadow, dot-fract hash,
     /// analytic normal, baked lifts: all on (`true`) or all off.
     pub optimized: bool,
@@ -228,7 +228,7 @@ fn fbm() -> Fbm {
 
 /// A small outdoor world with terrain, a blended tree, a displaced rock, vineyard rows, a
 /// capsule, a cylinder, an ellipsoid and a round box; `switches` pick the variants.
-pub fn world(switches: WorldSwitches) -> Plan {
+pub(crate) fn world(switches: WorldSwitches) -> Plan {
     let on = switches.optimized;
     let lift = |x: f32, z: f32, baked: f32| {
         if on {
@@ -391,7 +391,7 @@ pub fn world(switches: WorldSwitches) -> Plan {
 }
 
 /// Every hand-built plan with a name and its camera.
-pub fn all_plans() -> Vec<(String, Plan, Camera)> {
+pub(crate) fn all_plans() -> Vec<(String, Plan, Camera3d)> {
     let mut plans = vec![
         ("scene0".to_string(), scene0(), scene0_camera()),
         ("mandelbulb".to_string(), mandelbulb(), mandelbulb_camera()),

@@ -4,34 +4,8 @@ use glam::Vec2;
 
 use super::{Dv, Fv, Val, load_points, run_tape};
 use crate::field2d::sample::{MaterialId, Sample};
-use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
-use crate::field2d::tape::{MatOut, Tape};
-
-/// Why a batch evaluation could not run.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[non_exhaustive]
-pub enum EvalError {
-    /// The output slice is not as long as the input.
-    #[error("output has {output} slots for {input} points")]
-    LengthMismatch {
-        /// Points given.
-        input: usize,
-        /// Output slots given.
-        output: usize,
-    },
-    /// The backend cannot run here.
-    #[error(transparent)]
-    Backend(#[from] BackendError),
-}
-
-/// `Ok` when the output has one slot per input point.
-pub(crate) fn check(input: usize, output: usize) -> Result<(), EvalError> {
-    if input == output {
-        Ok(())
-    } else {
-        Err(EvalError::LengthMismatch { input, output })
-    }
-}
+use crate::field2d::simd::{self, Backend, Kernel, Lanes};
+use crate::field2d::tape::{EvalError, MatOut, Tape, check};
 
 /// The per-backend scratch of a block: coordinates and registers.
 pub(crate) struct Block<L: Lanes, V, const NB: usize> {
@@ -42,7 +16,7 @@ pub(crate) struct Block<L: Lanes, V, const NB: usize> {
 
 impl<L: Lanes, V: Val<L>, const NB: usize> Block<L, V, NB> {
     #[inline(always)]
-    pub fn new(l: L, tape: &Tape) -> Self {
+    pub(crate) fn new(l: L, tape: &Tape) -> Self {
         Block {
             xs: [l.splat(0.0); NB],
             ys: [l.splat(0.0); NB],
@@ -52,7 +26,7 @@ impl<L: Lanes, V: Val<L>, const NB: usize> Block<L, V, NB> {
 
     /// Runs the tape on up to `NB * WIDTH` points.
     #[inline(always)]
-    pub fn run(&mut self, l: L, tape: &Tape, points: &[Vec2]) {
+    pub(crate) fn run(&mut self, l: L, tape: &Tape, points: &[Vec2]) {
         if self.regs.len() < tape.registers() {
             self.regs.resize(tape.registers(), [V::cst(l, 0.0); NB]);
         }
@@ -62,13 +36,13 @@ impl<L: Lanes, V: Val<L>, const NB: usize> Block<L, V, NB> {
 
     /// The value register `reg`'s lane register `r`.
     #[inline(always)]
-    pub fn get(&self, reg: u32, r: usize) -> V {
+    pub(crate) fn get(&self, reg: u32, r: usize) -> V {
         self.regs[reg as usize][r]
     }
 
     /// Materials of lane register `r` (`out` gets `WIDTH` entries).
     #[inline(always)]
-    pub fn materials(&self, l: L, tape: &Tape, r: usize, out: &mut [MaterialId; 16]) {
+    pub(crate) fn materials(&self, l: L, tape: &Tape, r: usize, out: &mut [MaterialId; 16]) {
         match tape.material {
             MatOut::Const(m) => out.fill(m),
             MatOut::Value(reg) => {

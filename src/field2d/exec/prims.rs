@@ -16,15 +16,15 @@ pub(crate) struct Params<'a>(pub &'a [u32]);
 
 impl Params<'_> {
     #[inline(always)]
-    pub fn f(&self, i: usize) -> f32 {
+    pub(crate) fn f(&self, i: usize) -> f32 {
         f32::from_bits(self.0.get(i).copied().unwrap_or(0))
     }
     #[inline(always)]
-    pub fn u(&self, i: usize) -> u32 {
+    pub(crate) fn u(&self, i: usize) -> u32 {
         self.0.get(i).copied().unwrap_or(0)
     }
     #[inline(always)]
-    pub fn v2(&self, i: usize) -> Vec2 {
+    pub(crate) fn v2(&self, i: usize) -> Vec2 {
         Vec2::new(self.f(i), self.f(i + 1))
     }
 }

@@ -298,7 +298,7 @@ pub(crate) struct P2<V> {
 
 impl<V> P2<V> {
     #[inline(always)]
-    pub fn new(x: V, y: V) -> Self {
+    pub(crate) fn new(x: V, y: V) -> Self {
         P2 { x, y }
     }
 }
@@ -307,7 +307,7 @@ impl<V> P2<V> {
 impl<V: Copy> P2<V> {
     /// `self - c` for a constant `c` (offset by `-c`).
     #[inline(always)]
-    pub fn minus<L: Lanes>(self, l: L, c: glam::Vec2) -> Self
+    pub(crate) fn minus<L: Lanes>(self, l: L, c: glam::Vec2) -> Self
     where
         V: Val<L>,
     {
@@ -315,7 +315,7 @@ impl<V: Copy> P2<V> {
     }
     /// `x*x + y*y`.
     #[inline(always)]
-    pub fn length_squared<L: Lanes>(self, l: L) -> V
+    pub(crate) fn length_squared<L: Lanes>(self, l: L) -> V
     where
         V: Val<L>,
     {
@@ -323,7 +323,7 @@ impl<V: Copy> P2<V> {
     }
     /// Euclidean length.
     #[inline(always)]
-    pub fn length<L: Lanes>(self, l: L) -> V
+    pub(crate) fn length<L: Lanes>(self, l: L) -> V
     where
         V: Val<L>,
     {
@@ -331,7 +331,7 @@ impl<V: Copy> P2<V> {
     }
     /// `x*c.x + y*c.y` with scales.
     #[inline(always)]
-    pub fn dot_c<L: Lanes>(self, l: L, c: glam::Vec2) -> V
+    pub(crate) fn dot_c<L: Lanes>(self, l: L, c: glam::Vec2) -> V
     where
         V: Val<L>,
     {

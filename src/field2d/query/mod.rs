@@ -28,10 +28,10 @@
 //! `0.008` units at `1e5`), and no query can be more precise than that: choose tolerances
 //! (`hit_epsilon`) above the coordinate resolution where queries run.
 
-pub mod closest;
-pub mod contact;
-pub mod raycast;
-pub mod sweep;
+mod closest;
+mod contact;
+mod raycast;
+mod sweep;
 
 pub use closest::{ClosestOptions, SurfacePoint, closest_point};
 pub use contact::{CapsuleOptions, Contact, contact_capsule, contact_circle};
@@ -229,7 +229,7 @@ pub(crate) mod test_fields {
     use crate::field2d::{Sample, Sdf};
 
     /// A disc: negative inside.
-    pub struct Circle {
+    pub(crate) struct Circle {
         pub center: Vec2,
         pub radius: f32,
     }
@@ -254,7 +254,7 @@ pub(crate) mod test_fields {
     }
 
     /// Solid below the line `y = height` (ground).
-    pub struct Ground {
+    pub(crate) struct Ground {
         pub height: f32,
     }
 
@@ -275,7 +275,7 @@ pub(crate) mod test_fields {
     }
 
     /// An axis-aligned box with exact distance and gradient.
-    pub struct Boxy {
+    pub(crate) struct Boxy {
         pub center: Vec2,
         pub half: Vec2,
     }
@@ -321,7 +321,7 @@ pub(crate) mod test_fields {
     }
 
     /// Another field scaled by `k >= 1`, declaring Lipschitz `k`.
-    pub struct Scaled<F>(pub F, pub f32);
+    pub(crate) struct Scaled<F>(pub F, pub f32);
 
     impl<F: Sdf> Sdf for Scaled<F> {
         fn distance(&self, p: Vec2) -> f32 {
@@ -341,7 +341,7 @@ pub(crate) mod test_fields {
     }
 
     /// A field returning a constant (possibly NaN) value and a configurable Lipschitz constant.
-    pub struct Constant {
+    pub(crate) struct Constant {
         pub value: f32,
         pub lipschitz: f32,
     }

@@ -6,11 +6,11 @@ use super::{Kernel, Lanes};
 
 /// The AVX2 backend's token; it exists only where the CPU has AVX2.
 #[derive(Clone, Copy, Debug)]
-pub struct Avx2(());
+pub(super) struct Avx2(());
 
 impl Avx2 {
     /// The token, if this CPU has AVX2.
-    pub fn new() -> Option<Avx2> {
+    pub(super) fn new() -> Option<Avx2> {
         is_x86_feature_detected!("avx2").then_some(Avx2(()))
     }
 

@@ -7,11 +7,11 @@ use super::{Kernel, Lanes};
 
 /// The AVX-512 backend's token; it exists only where the CPU has AVX-512F.
 #[derive(Clone, Copy, Debug)]
-pub struct Avx512(());
+pub(super) struct Avx512(());
 
 impl Avx512 {
     /// The token, if this CPU has AVX-512F.
-    pub fn new() -> Option<Avx512> {
+    pub(super) fn new() -> Option<Avx512> {
         is_x86_feature_detected!("avx512f").then_some(Avx512(()))
     }
 

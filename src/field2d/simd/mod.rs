@@ -25,16 +25,16 @@ use std::sync::OnceLock;
 
 use thiserror::Error;
 
-pub mod scalar;
+pub(crate) mod scalar;
 
 #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-pub mod avx2;
+mod avx2;
 #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-pub mod avx512;
+mod avx512;
 #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
-pub mod neon;
+mod neon;
 #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-pub mod sse2;
+mod sse2;
 
 /// The environment variable that forces a backend.
 pub const BACKEND_ENV: &str = "CRATERFIELD_BACKEND";
@@ -298,6 +298,10 @@ pub(crate) trait Kernel {
 
 /// Lane registers per block on the SIMD backends: each decoded instruction is applied to
 /// `SIMD_BLOCK * WIDTH` points. The scalar backend takes one point at a time.
+#[cfg(all(
+    any(target_arch = "x86_64", target_arch = "aarch64"),
+    not(feature = "force-scalar")
+))]
 pub(crate) const SIMD_BLOCK: usize = 16;
 
 /// Runs `k` on `backend`: the one place that turns a [`Backend`] value into code.

@@ -5,7 +5,7 @@ use super::Lanes;
 
 /// The scalar backend's token.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Scalar;
+pub(crate) struct Scalar;
 
 impl Lanes for Scalar {
     const WIDTH: usize = 1;

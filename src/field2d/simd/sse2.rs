@@ -8,11 +8,11 @@ use super::{Kernel, Lanes};
 
 /// The SSE2 backend's token.
 #[derive(Clone, Copy, Debug)]
-pub struct Sse2(());
+pub(super) struct Sse2(());
 
 impl Sse2 {
     /// The token (SSE2 is part of x86_64, but it is still detected, like every backend).
-    pub fn new() -> Option<Sse2> {
+    pub(super) fn new() -> Option<Sse2> {
         is_x86_feature_detected!("sse2").then_some(Sse2(()))
     }
 

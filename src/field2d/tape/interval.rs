@@ -222,7 +222,7 @@ impl Range {
 }
 
 /// `a & b` on masks.
-pub fn and(a: Tri, b: Tri) -> Tri {
+pub(super) fn and(a: Tri, b: Tri) -> Tri {
     match (a, b) {
         (Tri::False, _) | (_, Tri::False) => Tri::False,
         (Tri::True, Tri::True) => Tri::True,

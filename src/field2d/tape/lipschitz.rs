@@ -95,7 +95,7 @@ fn spectral_norm(u: Vec2, v: Vec2) -> f32 {
 /// An upper bound of the Lipschitz constant of the value `out` computed by `instrs` over
 /// `registers` registers (a [`super::Tape`]'s, or a [`super::Program`]'s with one register
 /// per instruction); `+inf` when an instruction has no rule.
-pub fn lipschitz_bound(instrs: &[Instr], registers: usize, out: u32) -> f32 {
+pub(super) fn lipschitz_bound(instrs: &[Instr], registers: usize, out: u32) -> f32 {
     let mut regs = vec![UNKNOWN; registers];
     for i in instrs {
         let get = |r: u32| regs.get(r as usize).copied().unwrap_or(UNKNOWN);
@@ -175,7 +175,7 @@ pub fn lipschitz_bound(instrs: &[Instr], registers: usize, out: u32) -> f32 {
 
 impl super::Tape {
     /// An upper bound of the Lipschitz constant of the tape's value (see
-    /// [`lipschitz_bound`]); `+inf` where the tape holds an instruction without a rule.
+    /// `lipschitz_bound`); `+inf` where the tape holds an instruction without a rule.
     pub fn lipschitz_bound(&self) -> f32 {
         lipschitz_bound(&self.instrs, self.registers, self.value)
     }

@@ -225,7 +225,7 @@ impl Graph {
 }
 
 /// Lowers a graph.
-pub fn lower(graph: &Graph) -> Program {
+pub(super) fn lower(graph: &Graph) -> Program {
     let mut l = Lower {
         g: graph,
         b: Builder::default(),

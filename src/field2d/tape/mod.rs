@@ -4,33 +4,37 @@
 //!
 //! # Pipeline
 //!
-//! 1. [`lower`]: the graph becomes SSA, operation for operation what the reference walker
+//! 1. `lower`: the graph becomes SSA, operation for operation what the reference walker
 //!    ([`super::eval`]) computes, so that every backend can match it bit for bit, in
 //!    distance (`f32`) and in distance-and-gradient (dual number) mode. Primitives stay
 //!    coarse instructions (a circle is one instruction, a polygon one loop); arithmetic,
 //!    transforms and booleans are fine-grained. Building deduplicates identical
 //!    instructions (common subexpressions) and folds constant arithmetic where the folded
 //!    constant is the same dual number, signed zeros included.
-//! 2. [`specialize`]: for a region, interval arithmetic decides which side of each
+//! 2. `specialize`: for a region, interval arithmetic decides which side of each
 //!    `min`/`max`/select always wins there; the other side is dropped. Results are
 //!    bit-identical with and without it.
-//! 3. [`fuse`]: adjacent instruction patterns that dominate real tapes become
+//! 3. `fuse`: adjacent instruction patterns that dominate real tapes become
 //!    superinstructions.
-//! 4. [`regalloc`]: dead instructions are dropped, constants become immediates where the
+//! 4. `regalloc`: dead instructions are dropped, constants become immediates where the
 //!    instruction has an immediate form, and values get registers by a linear scan that
 //!    reuses a register as soon as its value's last use has passed.
 
-pub mod fuse;
-pub mod image;
-pub mod interval;
-pub mod lipschitz;
-pub mod lower;
-pub mod regalloc;
-pub mod specialize;
+mod error;
+mod fuse;
+mod image;
+mod interval;
+mod lipschitz;
+mod lower;
+mod regalloc;
+mod specialize;
 
 use std::sync::Arc;
 
-pub use crate::field2d::exec::batch::EvalError;
+pub use error::EvalError;
+pub(crate) use error::check;
+pub use fuse::FuseOptions;
+pub use image::{ImageOptions, inside_image};
 
 use super::sample::MaterialId;
 

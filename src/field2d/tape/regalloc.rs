@@ -52,7 +52,7 @@ fn use_immediates(ops: &mut [Instr]) {
 }
 
 /// Allocates registers for `program`, computing `outputs`.
-pub fn allocate(program: &Program, outputs: Outputs) -> Tape {
+pub(super) fn allocate(program: &Program, outputs: Outputs) -> Tape {
     let mut ops = program.ops.clone();
     use_immediates(&mut ops);
     let mut roots = vec![program.value];

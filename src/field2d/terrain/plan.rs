@@ -73,7 +73,7 @@ pub(crate) struct Plans {
 }
 
 impl Plans {
-    pub fn new(program: Arc<Program>, cells: usize, band: f32) -> Plans {
+    pub(super) fn new(program: Arc<Program>, cells: usize, band: f32) -> Plans {
         Plans {
             program,
             cells: (0..cells).map(|_| OnceLock::new()).collect(),
@@ -85,7 +85,7 @@ impl Plans {
 
     /// Whether cells get specialized tapes (on by default; off gives every cell the
     /// whole program, for comparison).
-    pub fn set_specialize(&mut self, on: bool) {
+    pub(super) fn set_specialize(&mut self, on: bool) {
         if on != self.specialize {
             self.specialize = on;
             for c in &mut self.cells {
@@ -95,7 +95,7 @@ impl Plans {
     }
 
     /// The plan of `cell` (`None`: outside the grid).
-    pub fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellPlan {
+    pub(super) fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellPlan {
         let whole = || Arc::new(CellPlan::new(&self.program, None, self.band));
         match cell.and_then(|c| self.cells.get(c).map(|slot| (c, slot))) {
             Some((c, slot)) if self.specialize => slot.get_or_init(|| {

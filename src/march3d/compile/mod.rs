@@ -22,7 +22,7 @@ use thiserror::Error;
 
 use crate::emit::fnv::Fnv64;
 use crate::emit::plan3d::{
-    AoMode, Camera, Hash, Lift, March, Material, Node, PaperShading, Plan, Shading, ShadowMode,
+    AoMode, Camera3d, Hash, Lift, March, Material, Node, PaperShading, Plan, Shading, ShadowMode,
     Shape, Sphere, TerrainPlan, WorldShading,
 };
 use crate::march3d::scene::{Lighting, MarchSettings, Scene, SceneError};
@@ -260,7 +260,7 @@ impl WorldCompiler {
     }
 
     /// The objects `camera` sees and their levels of detail.
-    pub fn visibility(&self, camera: &Camera, opts: &CompileOptions) -> Visibility {
+    pub fn visibility(&self, camera: &Camera3d, opts: &CompileOptions) -> Visibility {
         let objects = self
             .objects
             .iter()
@@ -288,7 +288,7 @@ impl WorldCompiler {
     }
 
     /// The plan for `camera`.
-    pub fn emit(&self, camera: &Camera, opts: &CompileOptions) -> Result<Plan, CompileError> {
+    pub fn emit(&self, camera: &Camera3d, opts: &CompileOptions) -> Result<Plan, CompileError> {
         check_options(opts)?;
         let vis = self.visibility(camera, opts);
         let steps = if opts.on(Optimization::StepTiers) {
@@ -470,7 +470,7 @@ impl WorldCompiler {
 
 /// The plan of `scene` for `camera` (see [`WorldCompiler`], which keeps the prepared
 /// objects between camera updates).
-pub fn emit(scene: &Scene, camera: &Camera, opts: &CompileOptions) -> Result<Plan, CompileError> {
+pub fn emit(scene: &Scene, camera: &Camera3d, opts: &CompileOptions) -> Result<Plan, CompileError> {
     WorldCompiler::new(scene)?.emit(camera, opts)
 }
 
@@ -495,7 +495,7 @@ fn check_options(opts: &CompileOptions) -> Result<(), CompileError> {
 
 /// Whether a bounding sphere can touch the view: in front of the eye (dot with the view
 /// direction), before the far plane, and inside the four side planes.
-fn in_frustum(camera: &Camera, s: &Sphere, opts: &CompileOptions, m: &MarchSettings) -> bool {
+fn in_frustum(camera: &Camera3d, s: &Sphere, opts: &CompileOptions, m: &MarchSettings) -> bool {
     if !s.radius.is_finite() {
         return true;
     }
@@ -520,7 +520,7 @@ fn in_frustum(camera: &Camera, s: &Sphere, opts: &CompileOptions, m: &MarchSetti
 mod tests {
     use super::*;
 
-    fn forest() -> (WorldCompiler, Camera) {
+    fn forest() -> (WorldCompiler, Camera3d) {
         let scene = Scene::builtin("forest").unwrap();
         let cam = scene.camera.camera().unwrap();
         (WorldCompiler::new(&scene).unwrap(), cam)
@@ -545,7 +545,7 @@ mod tests {
         assert_eq!(all, e.scene().objects.len());
         assert!(seen < all && seen > 0, "{seen} of {all}");
         // Turned around, the objects in front before are behind now.
-        let back = Camera::looking(cam.position, -cam.forward, Vec3::Y, 50.0).unwrap();
+        let back = Camera3d::looking(cam.position, -cam.forward, Vec3::Y, 50.0).unwrap();
         let behind = e.visibility(&back, &CompileOptions::default());
         let front = e.visibility(&cam, &CompileOptions::default());
         let both = front
@@ -561,7 +561,7 @@ mod tests {
         let (e, cam) = forest();
         let o = CompileOptions::default();
         let a = e.emit(&cam, &o).unwrap();
-        let nudged = Camera::looking(
+        let nudged = Camera3d::looking(
             cam.position + Vec3::new(0.0, 0.0, 0.01),
             cam.forward,
             Vec3::Y,
@@ -572,7 +572,7 @@ mod tests {
         assert_eq!(a.key, b.key);
         assert_eq!(a, b);
         let turned =
-            Camera::looking(cam.position, Vec3::new(1.0, 0.0, 0.3), Vec3::Y, 50.0).unwrap();
+            Camera3d::looking(cam.position, Vec3::new(1.0, 0.0, 0.3), Vec3::Y, 50.0).unwrap();
         let c = e.emit(&turned, &o).unwrap();
         assert_ne!(a.key, c.key);
         let d = e.emit(&cam, &o.without(Optimization::AabbGuards)).unwrap();

@@ -215,7 +215,7 @@ fn row_major(m: Mat3) -> [f32; 9] {
 
 impl Scene {
     /// Compiles the plan's nodes and terrain (the plan must be valid).
-    pub fn new(plan: &Plan) -> Scene {
+    pub(super) fn new(plan: &Plan) -> Scene {
         let terrain = plan.terrain.map(|t| TerrainC {
             fbm: FbmLanes::new(&t.fbm, plan.hash),
             material: t.material as i32,

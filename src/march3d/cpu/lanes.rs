@@ -24,7 +24,7 @@ impl<P: Pack> Copy for V3<P> {}
 impl<P: Pack> V3<P> {
     /// The same vector in every lane.
     #[inline(always)]
-    pub fn splat(p: P, v: Vec3) -> Self {
+    pub(super) fn splat(p: P, v: Vec3) -> Self {
         V3 {
             x: p.splat(v.x),
             y: p.splat(v.y),
@@ -34,7 +34,7 @@ impl<P: Pack> V3<P> {
 
     /// `self + o`.
     #[inline(always)]
-    pub fn add(self, p: P, o: Self) -> Self {
+    pub(super) fn add(self, p: P, o: Self) -> Self {
         V3 {
             x: p.add(self.x, o.x),
             y: p.add(self.y, o.y),
@@ -44,7 +44,7 @@ impl<P: Pack> V3<P> {
 
     /// `self - o`.
     #[inline(always)]
-    pub fn sub(self, p: P, o: Self) -> Self {
+    pub(super) fn sub(self, p: P, o: Self) -> Self {
         V3 {
             x: p.sub(self.x, o.x),
             y: p.sub(self.y, o.y),
@@ -54,7 +54,7 @@ impl<P: Pack> V3<P> {
 
     /// `self - c` for a constant `c` (zero components cost nothing).
     #[inline(always)]
-    pub fn sub_c(self, p: P, c: Vec3) -> Self {
+    pub(super) fn sub_c(self, p: P, c: Vec3) -> Self {
         let s = |v: P::F, c: f32| if c == 0.0 { v } else { p.sub(v, p.splat(c)) };
         V3 {
             x: s(self.x, c.x),
@@ -65,7 +65,7 @@ impl<P: Pack> V3<P> {
 
     /// `self * s`.
     #[inline(always)]
-    pub fn scale(self, p: P, s: P::F) -> Self {
+    pub(super) fn scale(self, p: P, s: P::F) -> Self {
         V3 {
             x: p.mul(self.x, s),
             y: p.mul(self.y, s),
@@ -75,7 +75,7 @@ impl<P: Pack> V3<P> {
 
     /// `self * s + o`.
     #[inline(always)]
-    pub fn mul_add(self, p: P, s: P::F, o: Self) -> Self {
+    pub(super) fn mul_add(self, p: P, s: P::F, o: Self) -> Self {
         V3 {
             x: p.fma(self.x, s, o.x),
             y: p.fma(self.y, s, o.y),
@@ -85,13 +85,13 @@ impl<P: Pack> V3<P> {
 
     /// The dot product.
     #[inline(always)]
-    pub fn dot(self, p: P, o: Self) -> P::F {
+    pub(super) fn dot(self, p: P, o: Self) -> P::F {
         p.fma(self.x, o.x, p.fma(self.y, o.y, p.mul(self.z, o.z)))
     }
 
     /// The dot product with a constant.
     #[inline(always)]
-    pub fn dot_c(self, p: P, c: Vec3) -> P::F {
+    pub(super) fn dot_c(self, p: P, c: Vec3) -> P::F {
         p.fma(
             self.x,
             p.splat(c.x),
@@ -101,26 +101,26 @@ impl<P: Pack> V3<P> {
 
     /// The squared length.
     #[inline(always)]
-    pub fn len2(self, p: P) -> P::F {
+    pub(super) fn len2(self, p: P) -> P::F {
         self.dot(p, self)
     }
 
     /// The length.
     #[inline(always)]
-    pub fn len(self, p: P) -> P::F {
+    pub(super) fn len(self, p: P) -> P::F {
         p.sqrt(self.len2(p))
     }
 
     /// The unit vector along `self`.
     #[inline(always)]
-    pub fn normalize(self, p: P) -> Self {
+    pub(super) fn normalize(self, p: P) -> Self {
         let inv = p.div(p.splat(1.0), self.len(p));
         self.scale(p, inv)
     }
 
     /// Componentwise absolute value.
     #[inline(always)]
-    pub fn abs(self, p: P) -> Self {
+    pub(super) fn abs(self, p: P) -> Self {
         V3 {
             x: p.abs(self.x),
             y: p.abs(self.y),
@@ -130,7 +130,7 @@ impl<P: Pack> V3<P> {
 
     /// Componentwise `max(self, 0)`.
     #[inline(always)]
-    pub fn max0(self, p: P) -> Self {
+    pub(super) fn max0(self, p: P) -> Self {
         let z = p.splat(0.0);
         V3 {
             x: p.max(self.x, z),
@@ -141,13 +141,13 @@ impl<P: Pack> V3<P> {
 
     /// The largest component.
     #[inline(always)]
-    pub fn max_elem(self, p: P) -> P::F {
+    pub(super) fn max_elem(self, p: P) -> P::F {
         p.max(self.x, p.max(self.y, self.z))
     }
 
     /// `if m { a } else { b }` per lane.
     #[inline(always)]
-    pub fn select(p: P, m: P::M, a: Self, b: Self) -> Self {
+    pub(super) fn select(p: P, m: P::M, a: Self, b: Self) -> Self {
         V3 {
             x: p.select(m, a.x, b.x),
             y: p.select(m, a.y, b.y),
@@ -157,7 +157,7 @@ impl<P: Pack> V3<P> {
 
     /// `m * self` for a row-major 3x3 matrix.
     #[inline(always)]
-    pub fn rotate(self, p: P, m: &[f32; 9]) -> Self {
+    pub(super) fn rotate(self, p: P, m: &[f32; 9]) -> Self {
         let row = |r: usize| {
             p.fma(
                 self.x,
@@ -178,7 +178,7 @@ impl<P: Pack> V3<P> {
 
     /// The mirror direction of `self` about the unit normal `n`.
     #[inline(always)]
-    pub fn reflect(self, p: P, n: Self) -> Self {
+    pub(super) fn reflect(self, p: P, n: Self) -> Self {
         let k = p.mul(p.splat(-2.0), self.dot(p, n));
         n.mul_add(p, k, self)
     }

@@ -16,7 +16,7 @@ pub(crate) struct MarchC {
 }
 
 impl MarchC {
-    pub fn new(m: &March) -> MarchC {
+    pub(super) fn new(m: &March) -> MarchC {
         MarchC {
             m: *m,
             escape2: m.escape * m.escape,

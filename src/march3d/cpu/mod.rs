@@ -1,4 +1,4 @@
-//! The CPU SIMD sphere tracer: renders a [`Plan`] for a [`Camera`] into RGBA8 pixels.
+//! The CPU SIMD sphere tracer: renders a [`Plan`] for a [`Camera3d`] into RGBA8 pixels.
 //!
 //! Rays travel in vertical SoA packets of `P::WIDTH` adjacent pixels of a row (8 on AVX2,
 //! 4 on NEON, 1 scalar) with active-lane masks; the image is cut into square tiles that
@@ -7,7 +7,7 @@
 //! the instruction set. Each lane's arithmetic depends only on its own pixel, so the
 //! image does not depend on the thread count or the tile size.
 //!
-//! [`render_counted`] runs the one-lane [`Counting`] backend and reports SDF evaluations
+//! [`render_counted`] runs the one-lane `Counting` backend and reports SDF evaluations
 //! and march steps over every ray of every pixel (primary, reflected, shadow, occlusion,
 //! normals) and the floating-point operations of the frame.
 
@@ -26,7 +26,7 @@ use self::lanes::V3;
 use self::shade::{Frame, MAX_WIDTH, camera_rays, shade};
 use super::simd::count::{self, Counting};
 use super::simd::{Isa, IsaError, Pack, PackKernel};
-use crate::emit::plan3d::{Camera, Plan, Shading, Shape};
+use crate::emit::plan3d::{Camera3d, Plan, Shading, Shape};
 
 /// The longest image side accepted.
 pub const MAX_SIDE: u32 = 16_384;
@@ -135,7 +135,7 @@ pub enum TraceError {
 /// Renders `plan` seen by `camera` at `width x height`.
 pub fn render(
     plan: &Plan,
-    camera: &Camera,
+    camera: &Camera3d,
     width: u32,
     height: u32,
     opts: &TraceOptions,
@@ -159,7 +159,7 @@ pub fn render(
 /// Renders with the one-lane counting backend and returns the image with its statistics.
 pub fn render_counted(
     plan: &Plan,
-    camera: &Camera,
+    camera: &Camera3d,
     width: u32,
     height: u32,
     threads: usize,
@@ -182,7 +182,7 @@ pub fn render_counted(
 }
 
 /// Validates the size, the camera and the plan.
-fn check(plan: &Plan, camera: &Camera, width: u32, height: u32) -> Result<(), TraceError> {
+fn check(plan: &Plan, camera: &Camera3d, width: u32, height: u32) -> Result<(), TraceError> {
     if width == 0
         || height == 0
         || width > MAX_SIDE

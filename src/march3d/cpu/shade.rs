@@ -8,7 +8,7 @@ use super::eval::{Scene, Tally, map, ray_meets_sphere};
 use super::lanes::V3;
 use super::march::{MarchC, march, normal, soft_shadow};
 use crate::emit::plan3d::{
-    AoMode, Camera, Material, PaperShading, Plan, Shading, ShadowMode, Sphere, WorldShading,
+    AoMode, Camera3d, Material, PaperShading, Plan, Shading, ShadowMode, Sphere, WorldShading,
 };
 use crate::march3d::math;
 use crate::march3d::simd::Pack;
@@ -24,14 +24,14 @@ pub(crate) struct Frame {
     pub shading: Shading,
     pub materials: Vec<Material>,
     pub bounds: Vec<Sphere>,
-    pub camera: Camera,
+    pub camera: Camera3d,
     pub width: u32,
     pub height: u32,
 }
 
 impl Frame {
     /// The frame of a valid plan.
-    pub fn new(plan: &Plan, camera: &Camera, width: u32, height: u32) -> Frame {
+    pub(super) fn new(plan: &Plan, camera: &Camera3d, width: u32, height: u32) -> Frame {
         Frame {
             scene: Scene::new(plan),
             march: MarchC::new(&plan.march),

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use crate::emit::codegen3d::march_wgsl;
-use crate::emit::plan3d::{Camera, Plan};
+use crate::emit::plan3d::{Camera3d, Plan};
 use crate::gpu::GpuError;
 use crate::gpu::PipelineCache;
 use crate::gpu::Timestamps;
@@ -21,7 +21,7 @@ const WORKGROUP: u32 = 8;
 
 /// The only target format: `rgba8unorm` rounds to nearest when storing, which is the CPU
 /// tracer's `floor(clamp(c, 0, 1) * 255 + 0.5)`.
-pub const TARGET_FORMAT: wgpu::TextureFormat = READBACK_FORMAT;
+pub(super) const TARGET_FORMAT: wgpu::TextureFormat = READBACK_FORMAT;
 
 /// The GPU raymarcher on the caller's device. See the [module docs](super).
 pub struct Marcher {
@@ -107,7 +107,7 @@ impl Marcher {
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         plan: &Plan,
-        camera: &Camera,
+        camera: &Camera3d,
         target: &wgpu::TextureView,
     ) -> Result<(), MarchGpuError> {
         let texture = target.texture();
@@ -138,7 +138,7 @@ impl Marcher {
     pub fn render_to_rgba(
         &mut self,
         plan: &Plan,
-        camera: &Camera,
+        camera: &Camera3d,
         width: u32,
         height: u32,
     ) -> Result<Vec<u8>, MarchGpuError> {
@@ -153,7 +153,7 @@ impl Marcher {
     pub fn render_timed(
         &mut self,
         plan: &Plan,
-        camera: &Camera,
+        camera: &Camera3d,
         width: u32,
         height: u32,
     ) -> Result<(Vec<u8>, f64), MarchGpuError> {
@@ -205,7 +205,7 @@ impl Marcher {
     fn prepare(
         &mut self,
         plan: &Plan,
-        camera: &Camera,
+        camera: &Camera3d,
         width: u32,
         height: u32,
     ) -> Result<(), MarchGpuError> {

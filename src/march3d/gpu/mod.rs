@@ -4,11 +4,11 @@
 //! [`Marcher`] compiles one pipeline per plan key (an LRU [`PipelineCache`](crate::gpu::PipelineCache)
 //! with hit/miss counters), records the pass into the caller's encoder and view
 //! ([`Marcher::encode`]), or renders and reads back pixels ([`Marcher::render_to_rgba`],
-//! [`Marcher::render_timed`]). Module map: [`uniforms`] (the camera uniform shared with
-//! WGSL), [`marcher`] (pipelines, targets and passes).
+//! [`Marcher::render_timed`]). Module map: `uniforms` (the camera uniform shared with
+//! WGSL), `marcher` (pipelines, targets and passes).
 
-pub mod marcher;
-pub mod uniforms;
+mod marcher;
+mod uniforms;
 
 use thiserror::Error;
 

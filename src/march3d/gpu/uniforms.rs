@@ -4,7 +4,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::emit::plan3d::Camera;
+use crate::emit::plan3d::Camera3d;
 
 /// The camera and image size of a frame; `MarchFrame` in `shaders/march3d.wgsl`. Each
 /// `vec3` is followed by a 4-byte scalar, which fills the 16-byte alignment WGSL gives it.
@@ -33,7 +33,7 @@ const _: () = assert!(std::mem::size_of::<MarchFrame>() == 64);
 
 impl MarchFrame {
     /// The uniform of `camera` for a `width x height` image.
-    pub fn new(camera: &Camera, width: u32, height: u32) -> MarchFrame {
+    pub fn new(camera: &Camera3d, width: u32, height: u32) -> MarchFrame {
         MarchFrame {
             position: camera.position.to_array(),
             tan_half_fov: camera.tan_half_fov,

@@ -7,11 +7,11 @@ use super::{Pack, PackKernel};
 
 /// The AVX2+FMA backend's token; it exists only where the CPU has both.
 #[derive(Clone, Copy, Debug)]
-pub struct Avx2(());
+pub(super) struct Avx2(());
 
 impl Avx2 {
     /// The token, if this CPU has AVX2 and FMA.
-    pub fn new() -> Option<Avx2> {
+    pub(super) fn new() -> Option<Avx2> {
         (is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma")).then_some(Avx2(()))
     }
 }

@@ -21,15 +21,16 @@ thread_local! {
 
 /// The counting backend's token: one `f32` lane, the scalar backend's arithmetic.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Counting;
+pub(crate) struct Counting;
 
 /// This thread's count, which is then reset to zero.
-pub fn take_flops() -> u64 {
+pub(crate) fn take_flops() -> u64 {
     FLOPS.with(|c| c.replace(0))
 }
 
-/// This thread's count so far.
-pub fn flops() -> u64 {
+/// This thread's count so far (the tests read it without resetting it).
+#[cfg(test)]
+pub(crate) fn flops() -> u64 {
     FLOPS.with(Cell::get)
 }
 

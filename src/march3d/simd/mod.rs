@@ -19,15 +19,15 @@ use std::str::FromStr;
 
 use thiserror::Error;
 
-pub mod count;
-pub mod scalar;
+pub(crate) mod count;
+pub(crate) mod scalar;
 #[cfg(test)]
 mod tests;
 
 #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-pub mod avx2;
+mod avx2;
 #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
-pub mod neon;
+mod neon;
 
 /// The environment variable that forces an instruction set for the tracer.
 pub const ISA_ENV: &str = "CRATERFIELD_MARCH_ISA";

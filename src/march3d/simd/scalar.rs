@@ -5,7 +5,7 @@ use super::{Pack, PackKernel};
 
 /// The scalar backend's token.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Scalar;
+pub(crate) struct Scalar;
 
 impl Pack for Scalar {
     const WIDTH: usize = 1;

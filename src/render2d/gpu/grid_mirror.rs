@@ -69,7 +69,7 @@ impl Storage {
 }
 
 /// The GPU copy of a terrain's grid.
-pub struct GridMirror {
+pub(crate) struct GridMirror {
     geometry: Option<Geometry>,
     events: Storage,
     sent_events: Vec<Event>,
@@ -96,7 +96,7 @@ fn brick_words(n: u32) -> u64 {
 
 impl GridMirror {
     /// Empty buffers on `device`.
-    pub fn new(device: &wgpu::Device) -> GridMirror {
+    pub(crate) fn new(device: &wgpu::Device) -> GridMirror {
         GridMirror {
             geometry: None,
             events: Storage::new(device, "craterfield events", 1, 32),
@@ -112,7 +112,7 @@ impl GridMirror {
     }
 
     /// The buffers in binding order 1..=4 of `shaders/field.wgsl`.
-    pub fn buffers(&self) -> [&wgpu::Buffer; 4] {
+    pub(crate) fn buffers(&self) -> [&wgpu::Buffer; 4] {
         [
             &self.events.buffer,
             &self.cells.buffer,
@@ -122,7 +122,7 @@ impl GridMirror {
     }
 
     /// The grid geometry part of the frame uniform.
-    pub fn frame<F: Sdf>(terrain: &Terrain<F>) -> GridFrame {
+    pub(crate) fn frame<F: Sdf>(terrain: &Terrain<F>) -> GridFrame {
         let grid = terrain.grid();
         let (nx, ny) = grid.dims();
         GridFrame {
@@ -137,7 +137,7 @@ impl GridMirror {
     }
 
     /// Brings the buffers up to date with `terrain`.
-    pub fn sync<F: Sdf>(
+    pub(crate) fn sync<F: Sdf>(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,

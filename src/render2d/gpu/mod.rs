@@ -8,18 +8,21 @@
 //! encoder, drawing into the caller's texture view (or [`TerrainRenderer::draw`] into the
 //! caller's own render pass after [`TerrainRenderer::encode_prepasses`]). Errors are values.
 //!
-//! Module map: [`uniforms`] (plain data shared with WGSL), [`grid_mirror`] (incremental
-//! uploads of the explosion grid), [`shaders`] (WGSL assembly), [`renderer`] (pipelines and
-//! passes), [`readback`] (a frame rendered to an image). The device plumbing it shares with
+//! Module map: `uniforms` (plain data shared with WGSL), `grid_mirror` (incremental
+//! uploads of the explosion grid), [`shaders`] (WGSL assembly), `renderer` (pipelines and
+//! passes), `readback` (a frame rendered to an image). The device plumbing it shares with
 //! the 3D raymarcher (headless context, offscreen targets, timestamps, the pipeline cache and
 //! [`GpuError`]) is [`crate::gpu`].
 
-pub mod grid_mirror;
-pub mod readback;
-pub mod renderer;
+pub(crate) mod grid_mirror;
+pub(crate) mod readback;
+pub(crate) mod renderer;
 pub mod shaders;
-pub mod uniforms;
+pub(crate) mod uniforms;
 
 use crate::gpu::GpuError;
 pub use readback::{Pipeline, render_to_image};
 pub use renderer::{PrepareStats, TerrainRenderer};
+
+#[cfg(test)]
+mod tests;

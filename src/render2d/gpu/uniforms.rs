@@ -14,7 +14,7 @@ use crate::render2d::options::ShadeOptions;
 /// Per-frame values; `Frame` in `shaders/common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct FrameUniform {
+pub(crate) struct FrameUniform {
     /// Camera centre, world units.
     pub center: [f32; 2],
     /// World units per pixel.
@@ -65,7 +65,12 @@ const _: () = assert!(std::mem::size_of::<FrameUniform>() == 144);
 
 impl FrameUniform {
     /// The camera, lattice and shading part (the grid part is filled by [`GridFrame`]).
-    pub fn new(camera: &Camera, lattice: &Lattice, shade: &ShadeOptions, srgb: bool) -> Self {
+    pub(crate) fn new(
+        camera: &Camera,
+        lattice: &Lattice,
+        shade: &ShadeOptions,
+        srgb: bool,
+    ) -> Self {
         let rgb = |c: [u8; 3]| [c[0] as f32, c[1] as f32, c[2] as f32, 255.0];
         FrameUniform {
             center: camera.center.to_array(),
@@ -85,7 +90,7 @@ impl FrameUniform {
     }
 
     /// Fills in the terrain's grid geometry, band and tick.
-    pub fn with_grid(self, g: &GridFrame) -> Self {
+    pub(crate) fn with_grid(self, g: &GridFrame) -> Self {
         FrameUniform {
             band: g.band,
             grid_origin: g.origin.to_array(),
@@ -101,7 +106,7 @@ impl FrameUniform {
 
 /// The grid-geometry part of [`FrameUniform`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct GridFrame {
+pub(crate) struct GridFrame {
     /// Band `M`.
     pub band: f32,
     /// Grid origin.
@@ -119,12 +124,12 @@ pub struct GridFrame {
 }
 
 /// Most palette entries the GPU passes hold; materials beyond draw magenta.
-pub const MAX_PALETTE: usize = 256;
+pub(crate) const MAX_PALETTE: usize = 256;
 
 /// The material colours; `Palette` in `shaders/shade.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct PaletteUniform {
+pub(crate) struct PaletteUniform {
     /// RGB 0..255 and 255 alpha per material.
     pub colors: [[f32; 4]; MAX_PALETTE],
 }
@@ -133,7 +138,7 @@ const _: () = assert!(std::mem::size_of::<PaletteUniform>() == 4096);
 
 impl PaletteUniform {
     /// The first [`MAX_PALETTE`] colours of `palette`.
-    pub fn new(palette: &[[u8; 3]]) -> PaletteUniform {
+    pub(crate) fn new(palette: &[[u8; 3]]) -> PaletteUniform {
         let mut colors = [[0.0; 4]; MAX_PALETTE];
         for (slot, c) in colors.iter_mut().zip(palette) {
             *slot = [c[0] as f32, c[1] as f32, c[2] as f32, 255.0];
@@ -145,7 +150,7 @@ impl PaletteUniform {
 /// One event; `GpuEvent` in `shaders/field.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct GpuEvent {
+pub(crate) struct GpuEvent {
     /// Centre, world units.
     pub center: [f32; 2],
     /// Full radius.
@@ -181,7 +186,7 @@ impl From<&Event> for GpuEvent {
 /// One grid cell; `GpuCell` in `shaders/field.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
-pub struct GpuCell {
+pub(crate) struct GpuCell {
     /// `CELL_*` in `field.wgsl`.
     pub state: u32,
     /// Material or brick id, by state.
@@ -195,7 +200,7 @@ pub struct GpuCell {
 const _: () = assert!(std::mem::size_of::<GpuCell>() == 16);
 
 /// `(state, payload)` codes of a cell state (`CELL_*` in `shaders/field.wgsl`).
-pub fn encode_state(state: CellState) -> (u32, u32) {
+pub(crate) fn encode_state(state: CellState) -> (u32, u32) {
     match state {
         CellState::Base => (0, 0),
         CellState::Air(MaterialSource::Base) => (1, 0),

@@ -97,7 +97,7 @@ pub(super) struct Layout {
 
 impl Layout {
     /// Pixel positions of `camera`'s image on the lattice of `tex`.
-    pub fn new(camera: &Camera, tex: &Textures) -> Layout {
+    pub(super) fn new(camera: &Camera, tex: &Textures) -> Layout {
         let lattice = tex.lattice;
         let cubic = match (tex.mode, tex.filter) {
             (Reconstruction::Planes, _) | (_, Upsample::Bilinear) => None,
@@ -199,7 +199,7 @@ pub(super) struct Scratch {
 
 impl Kernel {
     /// The block's texels: enough to bound it ([`Kernel::prepare`] before [`Kernel::row`]).
-    pub fn new(tex: &Textures, block: Block) -> Kernel {
+    pub(super) fn new(tex: &Textures, block: Block) -> Kernel {
         let (c, r) = (block.c, block.r);
         let quad = tex.quad(c, r);
         let interpolant = match (tex.mode, tex.filter) {
@@ -223,7 +223,7 @@ impl Kernel {
     /// Fills the per-quad and per-column parts into `scratch`: the blend weights and
     /// `g_k.x (p.x - C_k.x)` of each plane, or the cubic filter's sum along each of the four
     /// texel rows.
-    pub fn prepare(&self, tex: &Textures, layout: &Layout, scratch: &mut Scratch) {
+    pub(super) fn prepare(&self, tex: &Textures, layout: &Layout, scratch: &mut Scratch) {
         let xs = self.block.xs.clone();
         let n = xs.len();
         for buf in scratch
@@ -259,7 +259,7 @@ impl Kernel {
     }
 
     /// Computes the distances of image row `y` of the block into `scratch.dist[..n]`.
-    pub fn row(&self, layout: &Layout, y: usize, scratch: &mut Scratch) {
+    pub(super) fn row(&self, layout: &Layout, y: usize, scratch: &mut Scratch) {
         let n = self.block.xs.len();
         let rows = &layout.rows;
         let (fy, gy) = (rows.frac[y], rows.comp[y]);
@@ -326,7 +326,7 @@ impl Kernel {
 
     /// Material of the texel nearest to pixel `(x, y)` of the block: one of the quad's,
     /// since `floor(q + 0.5)` is `c` or `c + 1` along each axis.
-    pub fn material(&self, layout: &Layout, x: usize, y: usize) -> u16 {
+    pub(super) fn material(&self, layout: &Layout, x: usize, y: usize) -> u16 {
         if let Interpolant::Planes { centers } = &self.interpolant {
             let (px, py) = (layout.columns.world[x], layout.rows.world[y]);
             return self.quad[lowest_plane(&self.quad, centers, px, py)].material;
@@ -337,7 +337,7 @@ impl Kernel {
     }
 
     /// Bounds of the distance over the whole block.
-    pub fn bounds(&self, layout: &Layout) -> Bounds {
+    pub(super) fn bounds(&self, layout: &Layout) -> Bounds {
         let (lo, hi, magnitude) = match &self.interpolant {
             Interpolant::Planes { centers } => self.plane_bounds(layout, centers),
             Interpolant::Bilinear => value_bounds(self.quad.iter().map(|t| t.d)),
@@ -362,7 +362,7 @@ impl Kernel {
 
     /// Bounds `(lo, hi)` of the distance over image row `y` of the block (after
     /// [`Kernel::prepare`]), without margin: the block's [`Bounds::margin`] covers them.
-    pub fn row_bounds(&self, layout: &Layout, y: usize, scratch: &Scratch) -> (f32, f32) {
+    pub(super) fn row_bounds(&self, layout: &Layout, y: usize, scratch: &Scratch) -> (f32, f32) {
         match &self.interpolant {
             Interpolant::Planes { centers } => {
                 // Planes are affine along the row: their values at the row's end pixels

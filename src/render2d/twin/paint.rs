@@ -54,7 +54,7 @@ pub(super) struct Painter<'a> {
 
 impl Painter<'_> {
     /// Paints image rows `rows.pixels` (all in quad row `rows.cell`) into `bytes`, RGBA.
-    pub fn paint(&self, scratch: &mut PaintScratch, rows: &Run, bytes: &mut [u8]) {
+    pub(super) fn paint(&self, scratch: &mut PaintScratch, rows: &Run, bytes: &mut [u8]) {
         self.row_colors(scratch, rows);
         self.fill_sky(scratch, bytes);
         for columns in &self.layout.columns.runs {

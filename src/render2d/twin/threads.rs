@@ -6,7 +6,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The thread count a `threads` argument asks for: 0 means every core.
-pub fn resolve(threads: usize) -> usize {
+pub(super) fn resolve(threads: usize) -> usize {
     match threads {
         0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
         n => n,
@@ -16,7 +16,7 @@ pub fn resolve(threads: usize) -> usize {
 /// Runs `work` on every unit, on up to `threads` threads (0: all cores), each thread with
 /// its own scratch from `scratch`. Returns the first error; after one, units not yet
 /// started are skipped.
-pub fn run_units<U, S, E>(
+pub(super) fn run_units<U, S, E>(
     units: Vec<U>,
     threads: usize,
     scratch: impl Fn() -> S + Sync,

@@ -55,7 +55,10 @@ pub(super) struct Textures<'a> {
 
 impl<'a> Textures<'a> {
     /// The textures of `lowres` for `options`; an error names a missing or short buffer.
-    pub fn new(lowres: &'a LowRes, options: &RenderOptions) -> Result<Textures<'a>, TwinError> {
+    pub(super) fn new(
+        lowres: &'a LowRes,
+        options: &RenderOptions,
+    ) -> Result<Textures<'a>, TwinError> {
         check_texels(lowres)?;
         // Refine shades its proven blocks from the planes interpolant.
         let mode = match options.reconstruction {
@@ -85,7 +88,7 @@ impl<'a> Textures<'a> {
     }
 
     /// Texel `(c, r)`, clamped to the lattice.
-    pub fn texel(&self, c: i64, r: i64) -> &Texel {
+    pub(super) fn texel(&self, c: i64, r: i64) -> &Texel {
         let cols = i64::from(self.lattice.cols);
         let c = c.clamp(0, cols - 1);
         let r = r.clamp(0, i64::from(self.lattice.rows) - 1);
@@ -93,24 +96,24 @@ impl<'a> Textures<'a> {
     }
 
     /// The quad's texels `k = 0: (c, r), 1: (c+1, r), 2: (c, r+1), 3: (c+1, r+1)`.
-    pub fn quad(&self, c: u32, r: u32) -> [Texel; 4] {
+    pub(super) fn quad(&self, c: u32, r: u32) -> [Texel; 4] {
         let (c, r) = (i64::from(c), i64::from(r));
         [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dc, dr)| *self.texel(c + dc, r + dr))
     }
 
     /// World centres of the quad's texels.
-    pub fn quad_centers(&self, c: u32, r: u32) -> [Vec2; 4] {
+    pub(super) fn quad_centers(&self, c: u32, r: u32) -> [Vec2; 4] {
         [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dc, dr)| self.lattice.texel_center(c + dc, r + dr))
     }
 
     /// The 4x4 distances around quad `(c, r)`, `[row][column]` from `(c-1, r-1)`.
-    pub fn neighbourhood(&self, c: u32, r: u32) -> [[f32; 4]; 4] {
+    pub(super) fn neighbourhood(&self, c: u32, r: u32) -> [[f32; 4]; 4] {
         let (c, r) = (i64::from(c), i64::from(r));
         [0, 1, 2, 3].map(|j| [0, 1, 2, 3].map(|i| self.texel(c - 1 + i, r - 1 + j).d))
     }
 
     /// The max and min blend weights of the quad at `(c, r)`.
-    pub fn blends(&self, c: u32, r: u32) -> Blends {
+    pub(super) fn blends(&self, c: u32, r: u32) -> Blends {
         let cols = self.lattice.cols as usize;
         let at = |c: u32, r: u32| self.pairs[r as usize * cols + c as usize];
         let (p0, p1, p2) = (at(c, r), at(c + 1, r), at(c, r + 1));

@@ -2,12 +2,10 @@
 //! validates with naga (no GPU needed), over the emitted base fields of the example levels;
 //! and the uniform structs have the same layout on both sides.
 
-#![cfg(feature = "gpu")]
-
-use craterfield::emit::terrain2d::TerrainEmitter;
-use craterfield::field2d::Level;
-use craterfield::render2d::gpu::shaders;
-use craterfield::render2d::gpu::uniforms::{FrameUniform, GpuCell, GpuEvent};
+use super::shaders;
+use super::uniforms::{FrameUniform, GpuCell, GpuEvent};
+use crate::emit::terrain2d::TerrainEmitter;
+use crate::field2d::Level;
 
 fn validate(name: &str, source: &str) -> naga::Module {
     let module = naga::front::wgsl::parse_str(source)
