@@ -3,16 +3,18 @@
 //! every-variant graph agrees with `Graph::sample` on the CPU, and so does the default level
 //! culled to a 1080p view, inside that view.
 
+mod common;
 mod emit_support;
 
 use craterfield::emit::TerrainEmitter;
 use craterfield::field2d::{Aabb, Graph, Sample, Sdf};
 use craterfield::gpu::GpuContext;
 use emit_support::{
-    Rng, every_variant_bounds, every_variant_graph, example_levels, prospero_graph,
+    every_variant_bounds, every_variant_graph, example_levels, prospero_graph,
 };
 use glam::Vec2;
 use wgpu::util::DeviceExt;
+use common::Rng;
 
 /// Points compared per graph.
 const POINTS: usize = 3000;

@@ -1,6 +1,7 @@
 //! The 2D WGSL emitter: every emitted module validates with naga, snapshots of the example
 //! levels, culling decisions and keys, and the shader cache.
 
+mod common;
 mod emit_support;
 
 use std::path::{Path, PathBuf};
@@ -8,9 +9,10 @@ use std::path::{Path, PathBuf};
 use craterfield::emit::wgsl::f32_literal;
 use craterfield::emit::{Fate, TerrainEmitter};
 use craterfield::field2d::{Aabb, Graph};
+use common::Rng;
 #[cfg(feature = "gpu")]
 use craterfield::gpu::PipelineCache;
-use emit_support::{Rng, every_variant_graph, example_levels, islands_graph, prospero_graph};
+use emit_support::{every_variant_graph, example_levels, islands_graph, prospero_graph};
 use glam::Vec2;
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 

@@ -8,34 +8,20 @@
 //! specialization against the whole tape, and terrains with events on cell edges through
 //! the single-point and batch paths.
 
+mod common;
+
 use std::collections::BTreeSet;
 
 use craterfield::field2d::simd::Backend;
 use craterfield::field2d::tape::{Op, Outputs, Program};
 use craterfield::field2d::{Event, Graph, Level, Node, Sample, Sdf, TerrainOptions};
 use glam::Vec2;
+use common::Rng;
 
-/// SplitMix64: a small deterministic generator for test inputs.
-struct Rng(u64);
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [lo, hi).
-    fn f(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * ((self.next() >> 40) as f32 / 16_777_216.0)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-    fn p(&mut self, r: f32) -> [f32; 2] {
-        [self.f(-r, r), self.f(-r, r)]
-    }
+/// A point uniform in `[-r, r)^2`.
+fn point(rng: &mut Rng, r: f32) -> [f32; 2] {
+    [rng.range(-r, r), rng.range(-r, r)]
 }
 
 fn same(a: f32, b: f32) -> bool {
@@ -125,7 +111,7 @@ fn check_graph(
 }
 
 fn points_around(r: &mut Rng, radius: f32, n: usize) -> Vec<Vec2> {
-    let mut pts: Vec<Vec2> = (0..n).map(|_| Vec2::from(r.p(radius))).collect();
+    let mut pts: Vec<Vec2> = (0..n).map(|_| Vec2::from(point(&mut r, radius))).collect();
     // Integer and half-integer lattice points: where floors, cells and repetitions flip.
     for i in -8..=8 {
         for j in -8..=8 {
@@ -139,39 +125,39 @@ fn points_around(r: &mut Rng, radius: f32, n: usize) -> Vec<Vec2> {
 // ---- random graphs ----------------------------------------------------------------------
 
 fn random_primitive(r: &mut Rng) -> Node {
-    let size = |r: &mut Rng| r.f(1.0, 40.0);
+    let size = |r: &mut Rng| r.range(1.0, 40.0);
     match r.below(13) {
         0 => Node::Circle {
-            center: r.p(60.0),
+            center: point(&mut r, 60.0),
             radius: size(r),
         },
         1 => Node::Box {
-            center: r.p(60.0),
+            center: point(&mut r, 60.0),
             half_size: [size(r), size(r)],
         },
         2 => {
             let h = [size(r), size(r)];
             Node::RoundedBox {
-                center: r.p(60.0),
+                center: point(&mut r, 60.0),
                 half_size: h,
-                radius: r.f(0.0, h[0].min(h[1])),
+                radius: r.range(0.0, h[0].min(h[1])),
             }
         }
         3 => Node::OrientedBox {
-            a: r.p(60.0),
-            b: r.p(60.0),
-            thickness: r.f(0.5, 10.0),
+            a: point(&mut r, 60.0),
+            b: point(&mut r, 60.0),
+            thickness: r.range(0.5, 10.0),
         },
         4 => Node::Capsule {
-            a: r.p(60.0),
-            b: r.p(60.0),
+            a: point(&mut r, 60.0),
+            b: point(&mut r, 60.0),
             radius: size(r),
         },
         5 => {
             // A convex polygon: sorted angles around a centre.
             let n = 3 + r.below(6) as usize;
-            let c = r.p(40.0);
-            let mut angles: Vec<f32> = (0..n).map(|_| r.f(0.0, std::f32::consts::TAU)).collect();
+            let c = point(&mut r, 40.0);
+            let mut angles: Vec<f32> = (0..n).map(|_| r.range(0.0, std::f32::consts::TAU)).collect();
             angles.sort_by(f32::total_cmp);
             let rad = size(r);
             let points = angles
@@ -183,43 +169,43 @@ fn random_primitive(r: &mut Rng) -> Node {
         6 => {
             let a = size(r);
             Node::Ellipse {
-                center: r.p(60.0),
-                radii: [a, a * r.f(0.2, 5.0)],
+                center: point(&mut r, 60.0),
+                radii: [a, a * r.range(0.2, 5.0)],
             }
         }
         7 => Node::Ring {
-            center: r.p(60.0),
+            center: point(&mut r, 60.0),
             radius: size(r),
-            width: r.f(0.5, 8.0),
+            width: r.range(0.5, 8.0),
         },
         8 => Node::Arc {
-            center: r.p(60.0),
+            center: point(&mut r, 60.0),
             radius: size(r),
-            width: r.f(0.5, 8.0),
-            aperture: r.f(1.0, 180.0),
-            rotation: r.f(-360.0, 360.0),
+            width: r.range(0.5, 8.0),
+            aperture: r.range(1.0, 180.0),
+            rotation: r.range(-360.0, 360.0),
         },
         9 => Node::HalfPlane {
-            point: r.p(60.0),
-            normal: r.p(1.0),
+            point: point(&mut r, 60.0),
+            normal: point(&mut r, 1.0),
         },
         10 => {
             let n = 2 + r.below(30) as usize;
             Node::HeightProfile {
-                x0: r.f(-100.0, 0.0),
-                dx: r.f(1.0, 20.0),
-                heights: (0..n).map(|_| r.f(-50.0, 50.0)).collect(),
+                x0: r.range(-100.0, 0.0),
+                dx: r.range(1.0, 20.0),
+                heights: (0..n).map(|_| r.range(-50.0, 50.0)).collect(),
             }
         }
         11 => Node::Triangle {
-            a: r.p(60.0),
-            b: r.p(60.0),
-            c: r.p(60.0),
+            a: point(&mut r, 60.0),
+            b: point(&mut r, 60.0),
+            c: point(&mut r, 60.0),
         },
         _ => match r.below(3) {
             0 => Node::X,
             1 => Node::Y,
-            _ => Node::Const(r.f(-50.0, 50.0)),
+            _ => Node::Const(r.range(-50.0, 50.0)),
         },
     }
 }
@@ -239,36 +225,36 @@ fn random_node(r: &mut Rng, depth: u32) -> Node {
             cut: child(r),
         },
         3 => Node::SmoothUnion {
-            k: r.f(0.5, 20.0),
+            k: r.range(0.5, 20.0),
             nodes: kids(r),
         },
         4 => Node::SmoothIntersection {
-            k: r.f(0.5, 20.0),
+            k: r.range(0.5, 20.0),
             nodes: kids(r),
         },
         5 => Node::SmoothSubtract {
-            k: r.f(0.5, 20.0),
+            k: r.range(0.5, 20.0),
             base: child(r),
             cut: child(r),
         },
         6 => Node::Round {
-            radius: r.f(0.0, 5.0),
+            radius: r.range(0.0, 5.0),
             node: child(r),
         },
         7 => Node::Onion {
-            width: r.f(0.5, 5.0),
+            width: r.range(0.5, 5.0),
             node: child(r),
         },
         8 => Node::Translate {
-            offset: r.p(50.0),
+            offset: point(&mut r, 50.0),
             node: child(r),
         },
         9 => Node::Rotate {
-            degrees: r.f(-360.0, 360.0),
+            degrees: r.range(-360.0, 360.0),
             node: child(r),
         },
         10 => Node::Scale {
-            factor: r.f(0.25, 4.0),
+            factor: r.range(0.25, 4.0),
             node: child(r),
         },
         11 => Node::Mirror {
@@ -277,14 +263,14 @@ fn random_node(r: &mut Rng, depth: u32) -> Node {
             } else {
                 craterfield::field2d::Axis::Y
             },
-            at: r.f(-20.0, 20.0),
+            at: r.range(-20.0, 20.0),
             node: child(r),
         },
         12 | 13 => {
             // A small child that fits its period.
-            let rad = r.f(1.0, 8.0);
+            let rad = r.range(1.0, 8.0);
             let inner = Node::Circle {
-                center: [r.f(-2.0, 2.0), r.f(-2.0, 2.0)],
+                center: [r.range(-2.0, 2.0), r.range(-2.0, 2.0)],
                 radius: rad,
             };
             let inner = if r.below(2) == 0 {
@@ -302,12 +288,12 @@ fn random_node(r: &mut Rng, depth: u32) -> Node {
                 if r.below(3) == 0 {
                     0.0
                 } else {
-                    2.0 * rad + r.f(5.0, 30.0)
+                    2.0 * rad + r.range(5.0, 30.0)
                 },
                 if r.below(3) == 0 {
                     0.0
                 } else {
-                    2.0 * rad + r.f(5.0, 30.0)
+                    2.0 * rad + r.range(5.0, 30.0)
                 },
             ];
             let period = if period == [0.0, 0.0] {
@@ -340,16 +326,16 @@ fn random_node(r: &mut Rng, depth: u32) -> Node {
             }
         }
         14 => Node::DisplaceNoise {
-            amplitude: r.f(0.0, 6.0),
-            wavelength: r.f(5.0, 60.0),
+            amplitude: r.range(0.0, 6.0),
+            wavelength: r.range(5.0, 60.0),
             seed: r.next() as u32,
             node: child(r),
         },
         15 => Node::DisplaceWave {
-            amplitude: r.f(0.0, 6.0),
-            wavelength: r.f(5.0, 60.0),
-            direction: r.f(-180.0, 180.0),
-            phase: r.f(-1.0, 1.0),
+            amplitude: r.range(0.0, 6.0),
+            wavelength: r.range(5.0, 60.0),
+            direction: r.range(-180.0, 180.0),
+            phase: r.range(-1.0, 1.0),
             node: child(r),
         },
         16 | 17 => Node::Material {
@@ -483,14 +469,14 @@ fn specialization_is_bit_identical_inside_its_box() {
     for (g, extent) in &cases {
         let full = g.program();
         for _ in 0..6 {
-            let c = Vec2::new(r.f(-extent, *extent), r.f(-extent, *extent));
-            let h = Vec2::new(r.f(0.5, extent / 10.0), r.f(0.5, extent / 10.0));
+            let c = Vec2::new(r.range(-extent, *extent), r.range(-extent, *extent));
+            let h = Vec2::new(r.range(0.5, extent / 10.0), r.range(0.5, extent / 10.0));
             let (min, max) = (c - h, c + h);
             let spec = full.specialize(min, max);
             total += full.len();
             pruned += full.len() - spec.len().min(full.len());
             let mut pts: Vec<Vec2> = (0..200)
-                .map(|_| Vec2::new(r.f(min.x, max.x), r.f(min.y, max.y)))
+                .map(|_| Vec2::new(r.range(min.x, max.x), r.range(min.y, max.y)))
                 .collect();
             pts.extend([
                 min,
@@ -561,16 +547,16 @@ fn terrain_batches_match_single_points_and_brute_force() {
                 (r.below(25) as f32) * cell + if i % 2 == 0 { 0.0 } else { cell * 0.5 },
             )
         } else {
-            Vec2::new(r.f(0.0, 3840.0), r.f(150.0, 1300.0))
+            Vec2::new(r.range(0.0, 3840.0), r.range(150.0, 1300.0))
         };
-        let radius = r.f(2.0, 70.0);
+        let radius = r.range(2.0, 70.0);
         let mut e = if i % 6 == 0 {
             Event::fill(c, radius, (i % 5) as u16).unwrap()
         } else {
             Event::carve(c, radius).unwrap()
         };
         if i % 4 == 0 {
-            e = e.with_rim(r.f(0.5, 12.0)).unwrap();
+            e = e.with_rim(r.range(0.5, 12.0)).unwrap();
         }
         if i % 9 == 0 {
             e = e.with_growth(10).at_tick(i / 100);
@@ -579,7 +565,7 @@ fn terrain_batches_match_single_points_and_brute_force() {
     }
     t.set_tick(20);
     let mut pts: Vec<Vec2> = (0..30_000)
-        .map(|_| Vec2::new(r.f(-700.0, 4540.0), r.f(-700.0, 2300.0)))
+        .map(|_| Vec2::new(r.range(-700.0, 4540.0), r.range(-700.0, 2300.0)))
         .collect();
     for i in 0..61 {
         for j in 0..26 {
@@ -641,17 +627,17 @@ fn terrain_with_bricks_matches_across_paths() {
     let mut t = craterfield::field2d::Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
     let mut r = Rng(0x5eed_0004);
     for i in 0..3000 {
-        let c = Vec2::new(r.f(1000.0, 1600.0), r.f(300.0, 800.0));
+        let c = Vec2::new(r.range(1000.0, 1600.0), r.range(300.0, 800.0));
         let e = if i % 5 == 0 {
-            Event::fill(c, r.f(2.0, 15.0), 4).unwrap()
+            Event::fill(c, r.range(2.0, 15.0), 4).unwrap()
         } else {
-            Event::carve(c, r.f(2.0, 25.0)).unwrap()
+            Event::carve(c, r.range(2.0, 25.0)).unwrap()
         };
         t.apply(e).unwrap();
     }
     assert!(t.stats().bricks > 0, "the test needs bricks");
     let pts: Vec<Vec2> = (0..20_000)
-        .map(|_| Vec2::new(r.f(900.0, 1700.0), r.f(200.0, 900.0)))
+        .map(|_| Vec2::new(r.range(900.0, 1700.0), r.range(200.0, 900.0)))
         .collect();
     let single: Vec<Sample> = pts.iter().map(|&p| t.sample(p)).collect();
     for spec in [true, false] {

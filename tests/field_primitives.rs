@@ -1,26 +1,15 @@
 //! Every primitive against brute force: the distance to a densely sampled boundary (or, for
 //! thick curves, to a densely sampled centre line), and an independent inside test.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
 use craterfield::field2d::{Exactness, Graph, Node, Sdf};
 use glam::{DVec2, Vec2};
+use common::Rng;
 
-/// Deterministic pseudo-random points (SplitMix64).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
 
 fn compile(node: Node) -> Graph {
     Graph::compile(&node, &BTreeMap::new()).expect("valid node")
@@ -85,8 +74,8 @@ fn check(
     let mut worst = 0.0f64;
     for _ in 0..600 {
         let p = DVec2::new(
-            rng.range(window.0.x, window.1.x),
-            rng.range(window.0.y, window.1.y),
+            rng.range_f64(window.0.x, window.1.x),
+            rng.range_f64(window.0.y, window.1.y),
         );
         let d = g.distance(p.as_vec2()) as f64;
         let b = brute(p);
@@ -528,7 +517,7 @@ fn bounds_never_exceed_the_true_distance() {
         assert!(!boundary.is_empty(), "{name}: no boundary found");
         let mut rng = Rng(name.len() as u64 + 17);
         for _ in 0..300 {
-            let p = DVec2::new(rng.range(-10.0, 10.0), rng.range(-10.0, 10.0));
+            let p = DVec2::new(rng.range_f64(-10.0, 10.0), rng.range_f64(-10.0, 10.0));
             let d = g.distance(p.as_vec2()) as f64;
             let truth = nearest(&boundary, p);
             let l = g.lipschitz() as f64;

@@ -4,30 +4,18 @@
 //! A change of these values is a change of the simulation's bits: it breaks replays and
 //! network play between versions, so it must be deliberate.
 
+mod common;
+
 use craterfield::field2d::simd::Backend;
 use craterfield::field2d::{Event, EventKind, Level, Sample, Sdf, Terrain};
 use glam::Vec2;
+use common::Rng;
 
 /// Hash of distance, gradient and material of every sample.
 const GOLDEN_SAMPLES: u64 = 0x8223_d74a_fd85_933f;
 /// Hash of the distance-only batch path.
 const GOLDEN_DISTANCES: u64 = 0xd531_d7b0_864d_9746;
 
-/// SplitMix64.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: u64) -> i32 {
-        (self.next() % n) as i32
-    }
-}
 
 /// The fixed event sequence, in fixed point (no float enters it).
 fn events() -> Vec<Event> {
@@ -41,9 +29,9 @@ fn events() -> Vec<Event> {
                 } else {
                     EventKind::Carve
                 },
-                center: [r.below(3840 * 256), 150 * 256 + r.below(1150 * 256)],
-                radius: 2 * 256 + r.below(58 * 256),
-                rim: if i % 4 == 0 { r.below(10 * 256) } else { 0 },
+                center: [(r.below(3840 * 256) as i32), 150 * 256 + (r.below(1150 * 256) as i32)],
+                radius: 2 * 256 + (r.below(58 * 256) as i32),
+                rim: if i % 4 == 0 { (r.below(10 * 256) as i32) } else { 0 },
                 grow_ticks: if i % 13 == 0 { 8 } else { 0 },
                 tick: i / 50,
                 material: if fill { (i % 5) as u16 } else { 0 },

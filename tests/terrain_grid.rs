@@ -1,12 +1,15 @@
 //! The explosion grid agrees with the brute-force field: bit for bit without bricks, within
 //! the documented bound with bricks; bad events change nothing; costs stay bounded.
 
+mod common;
+
 use craterfield::det::math::{Dual, Num, V2};
 use craterfield::field2d::{
     CellState, Event, MaterialSource, Sample, Sdf, Terrain, TerrainOptions,
 };
 use glam::Vec2;
 use proptest::prelude::*;
+use common::Rng;
 
 /// Ground half-plane `y < ground` (material 1) united with circles (their own materials).
 #[derive(Clone, Debug)]
@@ -259,20 +262,6 @@ proptest! {
     }
 }
 
-/// A simple splitmix-style generator so the non-proptest tests are reproducible.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next()
-    }
-}
 
 fn hills() -> TestBase {
     TestBase {

@@ -8,7 +8,6 @@ pub mod eval;
 pub(crate) mod event;
 pub(crate) mod exec;
 pub mod graph;
-pub mod grid;
 pub mod import;
 pub(crate) mod level;
 #[cfg(feature = "mesh")]
@@ -29,9 +28,8 @@ pub use aabb::Aabb;
 pub use error::LevelError;
 pub use event::{Event, EventError, EventKind};
 pub use graph::{Exactness, Graph, GraphLimits, NodeId, NodeInfo};
-pub use grid::{CellState, GridStats, MaterialSource};
 pub use level::{DEFAULT_LEVEL_RON, Level, LevelFile, MAX_LEVEL_BYTES, MaterialDef, WorldBounds};
 pub use node::{Axis, Node, P2};
 pub use sample::{MaterialId, Sample};
 pub use sdf::Sdf;
-pub use terrain::{Terrain, TerrainError, TerrainOptions};
+pub use terrain::{CellState, CellView, Grid, GridStats, MaterialSource, Terrain, TerrainError, TerrainOptions};

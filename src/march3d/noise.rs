@@ -7,35 +7,11 @@
 //! and the tests.
 
 use glam::Vec2;
-use thiserror::Error;
 
 use super::math;
 use super::simd::Pack;
 use super::simd::scalar::Scalar;
-use crate::emit::plan3d::{Fbm, Hash};
-
-/// The most octaves an [`Fbm`] may have.
-pub const MAX_OCTAVES: u32 = 12;
-
-/// An [`Fbm`] that cannot be evaluated.
-#[derive(Clone, Debug, PartialEq, Error)]
-#[non_exhaustive]
-pub enum NoiseError {
-    /// A parameter is NaN or infinite.
-    #[error("fbm.{0} is not finite")]
-    NotFinite(&'static str),
-    /// The frequency or the lacunarity is not positive.
-    #[error("fbm.{name} must be positive (got {value})")]
-    NotPositive {
-        /// Which parameter.
-        name: &'static str,
-        /// Its value.
-        value: f32,
-    },
-    /// The octave count is outside `1..=12`.
-    #[error("fbm.octaves must be in 1..={MAX_OCTAVES} (got {0})")]
-    Octaves(u32),
-}
+use crate::emit::plan3d::{Fbm, Hash, MAX_OCTAVES};
 
 /// `x - floor(x)`.
 #[inline(always)]
@@ -160,7 +136,7 @@ pub struct FbmLanes {
 }
 
 impl FbmLanes {
-    /// The prepared form of `fbm` (which should be [valid](Fbm::validate); octaves beyond
+    /// The prepared form of `fbm` (of a [valid](crate::emit::plan3d::Plan::validate) plan; octaves beyond
     /// [`MAX_OCTAVES`] are dropped).
     pub fn new(fbm: &Fbm, hash: Hash) -> FbmLanes {
         let octaves = fbm.octaves.clamp(1, MAX_OCTAVES) as usize;
@@ -273,34 +249,6 @@ impl Fbm {
     pub fn step_scale(&self) -> f32 {
         let s = self.slope_bound() as f64;
         (1.0 / (1.0 + s * s).sqrt()) as f32
-    }
-
-    /// Whether every parameter is usable: all finite, positive frequency and lacunarity,
-    /// `1..=12` octaves.
-    pub fn validate(&self) -> Result<(), NoiseError> {
-        let fields = [
-            ("base", self.base),
-            ("amplitude", self.amplitude),
-            ("frequency", self.frequency),
-            ("lacunarity", self.lacunarity),
-            ("gain", self.gain),
-            ("rotation", self.rotation),
-        ];
-        if let Some((name, _)) = fields.iter().find(|(_, v)| !v.is_finite()) {
-            return Err(NoiseError::NotFinite(name));
-        }
-        for (name, value) in [
-            ("frequency", self.frequency),
-            ("lacunarity", self.lacunarity),
-        ] {
-            if value <= 0.0 {
-                return Err(NoiseError::NotPositive { name, value });
-            }
-        }
-        if !(1..=MAX_OCTAVES).contains(&self.octaves) {
-            return Err(NoiseError::Octaves(self.octaves));
-        }
-        Ok(())
     }
 }
 
@@ -427,29 +375,5 @@ mod tests {
         assert!((s - expect).abs() < 1e-5, "{s} vs {expect}");
         assert!((f.step_scale() - 1.0 / (1.0 + s * s).sqrt()).abs() < 1e-6);
         assert!(f.step_scale() > 0.0 && f.step_scale() < 1.0);
-    }
-
-    #[test]
-    fn validate_rejects_unusable_parameters() {
-        assert_eq!(fbm(3).validate(), Ok(()));
-        let bad = |edit: fn(&mut Fbm)| {
-            let mut f = fbm(3);
-            edit(&mut f);
-            f.validate()
-        };
-        assert_eq!(
-            bad(|f| f.amplitude = f32::NAN),
-            Err(NoiseError::NotFinite("amplitude"))
-        );
-        assert!(matches!(
-            bad(|f| f.frequency = 0.0),
-            Err(NoiseError::NotPositive { .. })
-        ));
-        assert!(matches!(
-            bad(|f| f.lacunarity = -2.0),
-            Err(NoiseError::NotPositive { .. })
-        ));
-        assert_eq!(bad(|f| f.octaves = 0), Err(NoiseError::Octaves(0)));
-        assert_eq!(bad(|f| f.octaves = 13), Err(NoiseError::Octaves(13)));
     }
 }

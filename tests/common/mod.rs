@@ -1,7 +1,8 @@
-//! Helpers shared by the integration tests: deterministic pseudo-random data without a
-//! dependency. Each test binary uses part of it.
+//! Helpers shared by the integration tests: the one deterministic pseudo-random generator
+//! (SplitMix64, no dependency) and scripted inputs. Each test binary uses part of it.
 #![allow(dead_code)]
 
+use craterfield::field2d::Aabb;
 use craterfield::sim::Input;
 use craterfield::sim::buttons::{FIRE, JUMP, STICK};
 
@@ -32,6 +33,29 @@ impl Rng {
     /// Uniform in `[0, 1)`, 24 bits.
     pub(crate) fn unit(&mut self) -> f32 {
         (self.next() >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    /// Uniform in `[lo, hi)`.
+    pub(crate) fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    /// Uniform in `[0, 1)`, 53 bits.
+    pub(crate) fn unit_f64(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in `[lo, hi)`, in `f64`.
+    pub(crate) fn range_f64(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit_f64()
+    }
+
+    /// Uniform in the box.
+    pub(crate) fn point_in(&mut self, b: &Aabb) -> glam::Vec2 {
+        glam::Vec2::new(
+            b.min.x + (b.max.x - b.min.x) * self.unit(),
+            b.min.y + (b.max.y - b.min.y) * self.unit(),
+        )
     }
 }
 

@@ -330,24 +330,3 @@ pub(crate) fn islands_graph() -> Graph {
     Graph::compile(&root, &BTreeMap::new()).expect("the islands compile")
 }
 
-/// SplitMix64 stream for test points.
-pub(crate) struct Rng(pub u64);
-
-impl Rng {
-    /// Uniform in `[0, 1)`.
-    pub(crate) fn unit(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    /// Uniform in the box.
-    pub(crate) fn point_in(&mut self, b: &Aabb) -> Vec2 {
-        Vec2::new(
-            b.min.x + (b.max.x - b.min.x) * self.unit(),
-            b.min.y + (b.max.y - b.min.y) * self.unit(),
-        )
-    }
-}

@@ -12,7 +12,7 @@ use std::collections::VecDeque;
 
 use thiserror::Error;
 
-use crate::field2d::grid::{Brick, Cell, GridStats};
+use crate::field2d::terrain::grid::{Brick, Cell, GridStats};
 
 /// One pre-image.
 #[derive(Clone, Debug)]

@@ -69,6 +69,7 @@
 //! one brick, so brick memory is bounded by the cell count times `(n+1)^2` samples.
 
 mod batch;
+pub(crate) mod grid;
 pub(crate) mod journal;
 mod proof;
 pub use proof::{CellBounds, RectSign};
@@ -82,13 +83,17 @@ use thiserror::Error;
 
 use super::event::{Event, EventError, EventKind};
 use super::exec;
-use super::grid::{self, Brick, CellState, Grid, GridError, GridStats, MaterialSource};
+use self::grid::{self, Brick};
 use super::sample::{MaterialId, Sample};
 use super::sdf::Sdf;
 use super::simd::Backend;
 use crate::det::math::{Dual, Num, V2, max, nclamp, nmax, nmin};
 use crate::det::quant::FIXED_ONE;
 use journal::{Entry, Journal};
+pub use grid::{
+    CellState, CellView, Grid, GridError, GridStats, MAX_BRICK_RESOLUTION, MAX_CELLS,
+    MaterialSource,
+};
 pub use journal::{RollbackError, TerrainMark};
 use plan::{CellPlan, Plans};
 

@@ -11,7 +11,7 @@ use std::sync::{Arc, OnceLock};
 
 use glam::Vec2;
 
-use crate::field2d::grid::Grid;
+use crate::field2d::terrain::grid::Grid;
 use crate::field2d::tape::{Outputs, Program, Tape};
 
 /// The tapes of one region.

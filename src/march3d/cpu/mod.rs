@@ -26,14 +26,12 @@ use self::lanes::V3;
 use self::shade::{Frame, MAX_WIDTH, camera_rays, shade};
 use super::simd::count::{self, Counting};
 use super::simd::{Isa, IsaError, Pack, PackKernel};
-use crate::emit::plan3d::{Camera3d, Plan, Shading, Shape};
+use crate::emit::plan3d::{Camera3d, Plan, PlanError};
 
 /// The longest image side accepted.
 pub const MAX_SIDE: u32 = 16_384;
 /// The most pixels accepted.
 pub const MAX_PIXELS: u64 = 64 * 1024 * 1024;
-/// The most reflection bounces accepted.
-pub const MAX_BOUNCES: u32 = 64;
 
 /// How to render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -124,9 +122,9 @@ pub enum TraceError {
     /// The camera has a non-finite or degenerate value.
     #[error("bad camera: {0}")]
     BadCamera(String),
-    /// The plan has a value the tracer cannot use.
+    /// The plan has a value the renderers cannot use.
     #[error("bad plan: {0}")]
-    BadPlan(String),
+    BadPlan(#[from] PlanError),
     /// The instruction set is not available.
     #[error(transparent)]
     Isa(#[from] IsaError),
@@ -210,162 +208,7 @@ fn check(plan: &Plan, camera: &Camera3d, width: u32, height: u32) -> Result<(), 
             "direction vectors must be unit".into(),
         ));
     }
-    validate_plan(plan).map_err(TraceError::BadPlan)
-}
-
-/// Every number the tracer reads is usable; every material index exists.
-fn validate_plan(plan: &Plan) -> Result<(), String> {
-    let m = &plan.march;
-    let not_nan = [
-        ("hit", m.hit),
-        ("hit_per_t", m.hit_per_t),
-        ("far", m.far),
-        ("escape", m.escape),
-        ("step_factor", m.step_factor),
-        ("ray_offset", m.ray_offset),
-        ("normal_eps", m.normal_eps),
-        ("relax", m.relax),
-    ];
-    if let Some((name, v)) = not_nan.iter().find(|(_, v)| v.is_nan()) {
-        return Err(format!("march.{name} is {v}"));
-    }
-    let finite = [
-        ("hit", m.hit),
-        ("hit_per_t", m.hit_per_t),
-        ("step_factor", m.step_factor),
-        ("ray_offset", m.ray_offset),
-        ("normal_eps", m.normal_eps),
-        ("relax", m.relax),
-    ];
-    if let Some((name, v)) = finite.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(format!("march.{name} is {v}"));
-    }
-    if !(m.step_factor > 0.0 && m.relax >= 1.0 && m.normal_eps > 0.0 && m.escape > 0.0) {
-        return Err(
-            "march: step_factor, normal_eps and escape must be positive, relax >= 1".into(),
-        );
-    }
-    let nmat = plan.materials.len();
-    let mat_ok = |i: u32| (i as usize) < nmat;
-    for (i, mat) in plan.materials.iter().enumerate() {
-        if !mat.colour.is_finite() || !mat.reflectivity.is_finite() {
-            return Err(format!("materials[{i}] is not finite"));
-        }
-    }
-    if let Some(t) = &plan.terrain {
-        t.fbm.validate().map_err(|e| format!("terrain: {e}"))?;
-        if !mat_ok(t.material) {
-            return Err(format!("terrain material {} does not exist", t.material));
-        }
-        if !(t.step_scale.is_finite() && t.step_scale > 0.0) {
-            return Err(format!("terrain step_scale {}", t.step_scale));
-        }
-    }
-    if plan.early_out.is_some_and(f32::is_nan) {
-        return Err("early_out is NaN".into());
-    }
-    for (i, node) in plan.nodes.iter().enumerate() {
-        if !mat_ok(node.material) {
-            return Err(format!(
-                "nodes[{i}] material {} does not exist",
-                node.material
-            ));
-        }
-        if !node_is_finite(node) {
-            return Err(format!("nodes[{i}] has a value that is not finite"));
-        }
-        if !node.bound.centre.is_finite() || node.bound.radius.is_nan() {
-            return Err(format!("nodes[{i}] bound is not finite"));
-        }
-    }
-    validate_shading(&plan.shading)
-}
-
-/// Whether a node's numbers are finite (NaN would poison every lane it touches) and its
-/// shape parameters usable.
-fn node_is_finite(node: &crate::emit::plan3d::Node) -> bool {
-    use crate::emit::plan3d::{Lift, Prim, PrimKind};
-    fn prim_ok(p: &Prim) -> bool {
-        let kind = match p.kind {
-            PrimKind::Sphere { r } | PrimKind::Octahedron { s: r } => r.is_finite(),
-            PrimKind::Box { half } => half.is_finite(),
-            PrimKind::RoundBox { half, r } => half.is_finite() && r.is_finite(),
-            PrimKind::Capsule { a, b, r } => a.is_finite() && b.is_finite() && r.is_finite(),
-            PrimKind::Torus { major, minor } => major.is_finite() && minor.is_finite(),
-            PrimKind::Cylinder { r, h } => r.is_finite() && h.is_finite(),
-            PrimKind::CappedCone { h, r1, r2 } => {
-                h > 0.0 && h.is_finite() && r1.is_finite() && r2.is_finite()
-            }
-            PrimKind::Ellipsoid { r } => r.is_finite() && r.min_element() > 0.0,
-            PrimKind::Plane { normal, offset } => normal.is_finite() && offset.is_finite(),
-        };
-        kind && p.centre.is_finite() && p.rotation.is_none_or(|m| m.is_finite())
-    }
-    let lift = match node.lift {
-        Lift::None => true,
-        Lift::Baked(y) => y.is_finite(),
-        Lift::Ground { x, z } => x.is_finite() && z.is_finite(),
-    };
-    let guard = node
-        .guard
-        .is_none_or(|g| g.centre.is_finite() && g.half.is_finite() && !g.margin.is_nan());
-    let shape = match &node.shape {
-        Shape::Prim(p) => prim_ok(p),
-        Shape::Blend { k, parts } => {
-            *k > 0.0 && k.is_finite() && !parts.is_empty() && parts.iter().all(prim_ok)
-        }
-        Shape::Displaced { prim, amp, freq } => {
-            prim_ok(prim) && amp.is_finite() && freq.is_finite()
-        }
-        Shape::Rows {
-            part,
-            spacing,
-            count,
-            ..
-        } => prim_ok(part) && *spacing > 0.0 && spacing.is_finite() && *count >= 1,
-        Shape::Mandelbulb {
-            centre,
-            iterations,
-            bailout,
-        } => centre.is_finite() && *iterations <= 64 && bailout.is_finite(),
-    };
-    lift && guard && shape
-}
-
-fn validate_shading(shading: &Shading) -> Result<(), String> {
-    let ok = match shading {
-        Shading::Paper(s) => {
-            if s.bounces > MAX_BOUNCES {
-                return Err(format!("{} bounces (at most {MAX_BOUNCES})", s.bounces));
-            }
-            s.lights
-                .iter()
-                .all(|l| l.position.is_finite() && l.emission.is_finite())
-                && [
-                    s.shininess,
-                    s.specular,
-                    s.ambient,
-                    s.reflection_scale,
-                    s.fog,
-                    s.gamma,
-                ]
-                .iter()
-                .all(|v| v.is_finite())
-                && s.shadow_k.is_none_or(f32::is_finite)
-        }
-        Shading::World(w) => {
-            w.sun.is_finite()
-                && w.sun_colour.is_finite()
-                && w.sky.iter().all(|c| c.is_finite())
-                && w.fog.is_finite()
-                && w.gamma.is_finite()
-        }
-    };
-    if ok {
-        Ok(())
-    } else {
-        Err("shading has a value that is not finite".into())
-    }
+    Ok(plan.validate()?)
 }
 
 /// What one worker produced: finished tiles and its counts.

@@ -12,7 +12,7 @@ mod uniforms;
 
 use thiserror::Error;
 
-use crate::emit::codegen3d::Codegen3dError;
+use crate::emit::plan3d::PlanError;
 use crate::gpu::GpuError;
 
 pub use marcher::Marcher;
@@ -24,7 +24,7 @@ pub use uniforms::MarchFrame;
 pub enum MarchGpuError {
     /// The plan cannot be turned into WGSL.
     #[error("plan: {0}")]
-    Plan(#[from] Codegen3dError),
+    Plan(#[from] PlanError),
     /// The image size is zero or above the device's texture limit.
     #[error("image size {width}x{height} is not within 1..={limit} per side")]
     Size {

@@ -8,7 +8,7 @@ use wgpu::util::DeviceExt;
 use super::GpuError;
 use super::uniforms::{GpuCell, GpuEvent, GridFrame, encode_state};
 use crate::field2d::event::Event;
-use crate::field2d::grid::Grid;
+use crate::field2d::Grid;
 use crate::field2d::sdf::Sdf;
 use crate::field2d::terrain::Terrain;
 
@@ -169,11 +169,11 @@ impl GridMirror {
 
     /// Fresh buffers sized for `grid`, nothing sent yet.
     fn reset(&mut self, device: &wgpu::Device, grid: &Grid) -> Result<(), GpuError> {
-        let cells = grid.cells.len() as u64;
+        let cells = grid.cell_count() as u64;
         self.check_size("grid cells", cells * 16)?;
         self.cells = Storage::new(device, "craterfield cells", cells, 16);
-        self.sent_revisions = vec![u64::MAX; grid.cells.len()];
-        self.slots = vec![(0, 0); grid.cells.len()];
+        self.sent_revisions = vec![u64::MAX; grid.cell_count()];
+        self.slots = vec![(0, 0); grid.cell_count()];
         self.arena_used = 0;
         self.sent_events.clear();
         Ok(())
@@ -218,27 +218,19 @@ impl GridMirror {
         grid: &Grid,
         stats: &mut UploadStats,
     ) -> Result<(), GpuError> {
-        let dirty: Vec<usize> = grid
-            .cells
-            .iter()
-            .zip(&self.sent_revisions)
-            .enumerate()
-            .filter(|(_, (c, sent))| c.revision != **sent)
-            .map(|(i, _)| i)
-            .collect();
+        let dirty: Vec<usize> = grid.changed_since(&self.sent_revisions).collect();
         if dirty.is_empty() && !stats.reallocated {
             return Ok(());
         }
         let needs_room = dirty.iter().any(|&i| {
-            let len = grid.cells.get(i).map_or(0, |c| c.events.len()) as u32;
+            let len = grid.cell(i).map_or(0, |c| c.events().len()) as u32;
             len > self.slots.get(i).map_or(0, |s| s.1)
         });
         let extra: u64 = dirty
             .iter()
             .map(|&i| {
-                grid.cells
-                    .get(i)
-                    .map_or(0, |c| room_for(c.events.len() as u32).into())
+                grid.cell(i)
+                    .map_or(0, |c| room_for(c.events().len() as u32).into())
             })
             .sum();
         if needs_room && u64::from(self.arena_used) + extra > self.lists.capacity {
@@ -248,7 +240,7 @@ impl GridMirror {
         self.ensure_brick_room(device, grid, stats)?;
         let all: Vec<usize>;
         let targets: &[usize] = if stats.reallocated {
-            all = (0..grid.cells.len()).collect();
+            all = (0..grid.cell_count()).collect();
             &all
         } else {
             &dirty
@@ -262,8 +254,8 @@ impl GridMirror {
     /// Lays every cell's slot out again with room to grow, in a buffer big enough for them.
     fn repack(&mut self, device: &wgpu::Device, grid: &Grid) -> Result<(), GpuError> {
         let mut next = 0u32;
-        for (slot, cell) in self.slots.iter_mut().zip(&grid.cells) {
-            let room = room_for(cell.events.len() as u32);
+        for (slot, cell) in self.slots.iter_mut().zip(grid.cells()) {
+            let room = room_for(cell.events().len() as u32);
             *slot = (next, room);
             next = next.saturating_add(room);
         }
@@ -283,9 +275,8 @@ impl GridMirror {
     ) -> Result<(), GpuError> {
         let words = 2 * brick_words(grid.brick_resolution());
         let needed = grid
-            .cells
-            .iter()
-            .filter_map(|c| c.state.0.brick())
+            .cells()
+            .filter_map(|c| c.state().brick())
             .map(|id| u64::from(id) + 1)
             .max()
             .unwrap_or(0);
@@ -301,10 +292,10 @@ impl GridMirror {
 
     /// Writes cell `i`'s record, list and brick.
     fn send_cell(&mut self, queue: &wgpu::Queue, grid: &Grid, i: usize, stats: &mut UploadStats) {
-        let Some(cell) = grid.cells.get(i) else {
+        let Some(cell) = grid.cell(i) else {
             return;
         };
-        let len = cell.events.len() as u32;
+        let len = cell.events().len() as u32;
         let Some(slot) = self.slots.get_mut(i) else {
             return;
         };
@@ -319,12 +310,12 @@ impl GridMirror {
             return;
         }
         if len > 0 {
-            let bytes = bytemuck::cast_slice(&cell.events);
+            let bytes = bytemuck::cast_slice(cell.events());
             queue.write_buffer(&self.lists.buffer, u64::from(start) * 4, bytes);
-            stats.list_entries += cell.events.len();
+            stats.list_entries += cell.events().len();
             stats.bytes += bytes.len() as u64;
         }
-        let (state, payload) = encode_state(cell.state.0);
+        let (state, payload) = encode_state(cell.state());
         let record = GpuCell {
             state,
             payload,
@@ -338,28 +329,27 @@ impl GridMirror {
         );
         stats.cells += 1;
         stats.bytes += 16;
-        if let Some(id) = cell.state.0.brick() {
+        if let Some(id) = cell.state().brick() {
             self.send_brick(queue, grid, id, stats);
         }
         if let Some(sent) = self.sent_revisions.get_mut(i) {
-            *sent = cell.revision;
+            *sent = cell.revision();
         }
     }
 
     fn send_brick(&self, queue: &wgpu::Queue, grid: &Grid, id: u32, stats: &mut UploadStats) {
-        let Some(brick) = grid.brick(id) else {
+        let Some((values, materials)) = grid.brick_samples(id) else {
             return;
         };
         let words = brick_words(grid.brick_resolution());
         let fits = (u64::from(id) + 1) * 2 * words <= self.bricks.capacity;
-        if brick.values.len() as u64 != words || !fits {
+        if values.len() as u64 != words || !fits {
             return;
         }
-        let data: Vec<u32> = brick
-            .values
+        let data: Vec<u32> = values
             .iter()
             .map(|v| v.to_bits())
-            .chain(brick.materials.iter().map(|&m| u32::from(m)))
+            .chain(materials.iter().map(|&m| u32::from(m)))
             .collect();
         let offset = u64::from(id) * 2 * words * 4;
         queue.write_buffer(&self.bricks.buffer, offset, bytemuck::cast_slice(&data));

@@ -6,7 +6,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
 
 use crate::field2d::event::{Event, EventKind};
-use crate::field2d::grid::{CellState, MaterialSource};
+use crate::field2d::{CellState, MaterialSource};
 use crate::render2d::camera::Camera;
 use crate::render2d::lattice::Lattice;
 use crate::render2d::options::ShadeOptions;

@@ -41,7 +41,7 @@ use super::shade::Shader;
 use super::threads::run_units;
 use super::upsample::{Textures, normal};
 use super::{FieldImage, LowRes, TwinError};
-use crate::field2d::grid::Grid;
+use crate::field2d::Grid;
 use crate::field2d::terrain::RectSign;
 use crate::field2d::{MaterialId, Sample, Sdf, Terrain};
 use crate::render2d::camera::Camera;

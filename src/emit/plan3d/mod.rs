@@ -91,8 +91,21 @@
 //! One *SDF evaluation* is one call of a primitive's distance, of the terrain height, of a
 //! bounding sphere, or of one Mandelbulb; a guard's box test is not one.
 
+mod check;
+
 use glam::{Mat3, Vec3};
 use serde::{Deserialize, Serialize};
+
+pub use check::PlanError;
+
+/// Most octaves of a terrain's FBM.
+pub const MAX_OCTAVES: u32 = 12;
+
+/// Most reflection bounces of the paper shading.
+pub const MAX_BOUNCES: u32 = 64;
+
+/// Most iterations of a Mandelbulb node.
+pub const MAX_MANDELBULB_ITERATIONS: u32 = 64;
 
 /// How far above the tallest object the height early-out starts (see the module doc).
 pub const EARLY_OUT_MARGIN: f32 = 0.5;

@@ -1,219 +1,19 @@
-//! The compiled level graph: nodes validated, references resolved and constants precomputed
-//! into a flat arena, with per-node facts (exact or bound, Lipschitz bound, bounding box).
-//!
-//! [`Graph::compile`] is the only way in: it checks every value (finite, positive where
-//! needed, within absurd-size limits), polygon sanity, reference cycles and the size limits,
-//! and reports the node path of the first problem. Evaluation is in [`super::eval`].
+//! The level compiler: a node tree (with named references) to a [`Graph`], validating every
+//! value and computing each node's facts (exactness, Lipschitz bound, bounds, cost). Every
+//! error names the node path of the first problem.
 
 use std::collections::BTreeMap;
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
 
 use glam::Vec2;
-use serde::{Deserialize, Serialize};
 
-use super::aabb::Aabb;
-use super::error::LevelError;
-use super::node::{Axis, Node, P2};
-use super::noise::NOISE_LIPSCHITZ;
-use super::sample::MaterialId;
-use super::tape::Program;
+use super::{Exactness, Graph, GraphLimits, NodeId, NodeInfo, Op, Repeat};
 use crate::det::math::{self, TAU, sin_cos_deg};
-
-/// Index of a node in a compiled [`Graph`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub struct NodeId(pub u32);
-
-/// Whether a node's value is the true Euclidean distance or only a bound on it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Exactness {
-    /// The value is the signed Euclidean distance to the boundary.
-    Exact,
-    /// The sign is right and `|value| / lipschitz` is at most the true distance (so a sphere
-    /// tracing step of `|value| / lipschitz` never crosses the boundary). For nodes with a
-    /// Lipschitz bound of 1 that is `|value| <= distance`.
-    Bound,
-}
-
-/// Facts every node reports.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct NodeInfo {
-    /// Exact distance or a bound.
-    pub exactness: Exactness,
-    /// Upper bound on `|d(a) - d(b)| / |a - b|`.
-    pub lipschitz: f32,
-    /// Box holding the solid region (`d < 0`), infinite where the node is unbounded. Exact
-    /// for primitives; for operators it is derived from the children's boxes (for smooth
-    /// blends and displacements, grown by the largest amount they lower the value).
-    pub bounds: Aabb,
-    /// Evaluation cost estimate (primitive evaluations).
-    pub cost: u64,
-}
-
-/// Size limits enforced by [`Graph::compile`], so no input makes evaluation unbounded.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct GraphLimits {
-    /// Compiled nodes.
-    pub max_nodes: usize,
-    /// Nesting depth (references included).
-    pub max_depth: usize,
-    /// Estimated primitive evaluations per query.
-    pub max_cost: u64,
-    /// Vertices of one polygon or samples of one height profile.
-    pub max_points: usize,
-    /// Largest accepted coordinate or size magnitude.
-    pub max_coordinate: f32,
-}
-
-impl Default for GraphLimits {
-    fn default() -> Self {
-        GraphLimits {
-            max_nodes: 20_000,
-            max_depth: 64,
-            max_cost: 200_000,
-            max_points: 65_536,
-            max_coordinate: 1.0e6,
-        }
-    }
-}
-
-/// A compiled operation with its precomputed constants.
-#[derive(Clone, Debug)]
-pub(crate) enum Op {
-    Circle {
-        c: Vec2,
-        r: f32,
-    },
-    Box {
-        c: Vec2,
-        h: Vec2,
-    },
-    RoundedBox {
-        c: Vec2,
-        inner: Vec2,
-        r: f32,
-    },
-    OrientedBox {
-        mid: Vec2,
-        dir: Vec2,
-        half: Vec2,
-    },
-    Capsule {
-        a: Vec2,
-        ba: Vec2,
-        inv_ba2: f32,
-        r: f32,
-    },
-    Polygon {
-        pts: Vec<Vec2>,
-        inv_e2: Vec<f32>,
-    },
-    Ellipse {
-        c: Vec2,
-        radii: Vec2,
-    },
-    Ring {
-        c: Vec2,
-        r: f32,
-        half_width: f32,
-    },
-    Arc {
-        c: Vec2,
-        rot: Vec2,
-        sc: Vec2,
-        ra: f32,
-        rb: f32,
-    },
-    HalfPlane {
-        n: Vec2,
-        offset: f32,
-    },
-    Height {
-        pts: Vec<Vec2>,
-        dx: f32,
-        inv_e2: Vec<f32>,
-    },
-    Union(Vec<NodeId>),
-    Intersection(Vec<NodeId>),
-    Subtract(NodeId, NodeId),
-    SmoothUnion(f32, Vec<NodeId>),
-    SmoothIntersection(f32, Vec<NodeId>),
-    SmoothSubtract(f32, NodeId, NodeId),
-    Round(f32, NodeId),
-    Onion(f32, NodeId),
-    Translate(Vec2, NodeId),
-    Rotate {
-        cos: f32,
-        sin: f32,
-        child: NodeId,
-    },
-    Scale {
-        factor: f32,
-        inv: f32,
-        child: NodeId,
-    },
-    Mirror {
-        axis: Axis,
-        at: f32,
-        child: NodeId,
-    },
-    Repeat(Box<Repeat>),
-    Noise {
-        amplitude: f32,
-        inv_wavelength: f32,
-        seed: u32,
-        child: NodeId,
-    },
-    Wave {
-        amplitude: f32,
-        k: Vec2,
-        phase: f32,
-        child: NodeId,
-    },
-    Material(MaterialId, NodeId),
-    X,
-    Y,
-    Const(f32),
-    Add(NodeId, NodeId),
-    Sub(NodeId, NodeId),
-    Mul(NodeId, NodeId),
-    Neg(NodeId),
-    Square(NodeId),
-    Sqrt(NodeId),
-}
-
-/// Constants of a (finite or infinite) repetition.
-#[derive(Clone, Debug)]
-pub(crate) struct Repeat {
-    /// Period per axis; 0 where the axis is not repeated.
-    pub period: Vec2,
-    /// Lowest and highest instance index per axis.
-    pub lo: [i32; 2],
-    pub hi: [i32; 2],
-    /// The child's bounding box (centre, half extents) on the repeated axes: each instance is
-    /// intersected with its box so that instances left out of the 3x3 neighbourhood are
-    /// provably farther than `cap`.
-    pub guard_c: Vec2,
-    pub guard_h: Vec2,
-    /// Half the smallest repeated period: instances outside the 3x3 neighbourhood are at
-    /// least this far away (see `eval`).
-    pub cap: f32,
-    /// Box around all instances (infinite along infinitely repeated or unbounded axes):
-    /// every instance is at least as far as this box.
-    pub all_min: Vec2,
-    pub all_max: Vec2,
-    pub child: NodeId,
-}
-
-/// A validated, compiled level graph.
-#[derive(Clone, Debug)]
-pub struct Graph {
-    pub(crate) ops: Vec<Op>,
-    pub(crate) info: Vec<NodeInfo>,
-    pub(crate) root: NodeId,
-    /// The lowered tape program, built on first use ([`Graph::program`], where the
-    /// lowering is).
-    pub(crate) program: OnceLock<Arc<Program>>,
-}
+use crate::field2d::aabb::Aabb;
+use crate::field2d::error::LevelError;
+use crate::field2d::node::{Axis, Node, P2};
+use crate::field2d::noise::NOISE_LIPSCHITZ;
+use crate::field2d::sample::MaterialId;
 
 impl Graph {
     /// Compile `root`, resolving `Ref`s against `named`, with the default limits.
@@ -252,30 +52,6 @@ impl Graph {
         })
     }
 
-    /// The root node.
-    pub fn root(&self) -> NodeId {
-        self.root
-    }
-
-    /// Facts about the root node.
-    pub fn root_info(&self) -> &NodeInfo {
-        &self.info[self.root.0 as usize]
-    }
-
-    /// Facts about a node, or `None` for an id from another graph.
-    pub fn info(&self, id: NodeId) -> Option<&NodeInfo> {
-        self.info.get(id.0 as usize)
-    }
-
-    /// Number of compiled nodes (shared sub-graphs count once).
-    pub fn node_count(&self) -> usize {
-        self.ops.len()
-    }
-
-    /// All node ids, children before parents.
-    pub fn node_ids(&self) -> impl Iterator<Item = NodeId> + '_ {
-        (0..self.ops.len() as u32).map(NodeId)
-    }
 }
 
 struct Compiler<'a> {

@@ -16,7 +16,7 @@ mod cell;
 pub(crate) use cell::{Brick, Cell, CellStateSlot};
 pub use cell::{CellState, GridStats, MaterialSource};
 
-use super::terrain::journal::{Entry, Journal};
+use super::journal::{Entry, Journal};
 use crate::det::math::{Num, V2, nclamp};
 
 /// Most cells a grid may have, so that memory stays bounded.
@@ -87,6 +87,33 @@ pub(crate) fn guard(event_extent: f64, rect: &Rect) -> f64 {
     1.0 / 64.0 + (event_extent + rect.extent()) * (1.0 / 65536.0)
 }
 
+/// One cell as a reader sees it (a mirror of the grid, such as the GPU renderer's, or a
+/// tool): its state, the events that can reach it and its revision. The grid's storage stays
+/// private to the terrain, which alone changes it.
+#[derive(Clone, Copy, Debug)]
+pub struct CellView<'g> {
+    cell: &'g Cell,
+}
+
+impl<'g> CellView<'g> {
+    /// The cell's field before its listed events are applied.
+    pub fn state(&self) -> CellState {
+        self.cell.state.0
+    }
+
+    /// Indices into the terrain's event log, ascending, of the events that can reach it.
+    pub fn events(&self) -> &'g [u32] {
+        &self.cell.events
+    }
+
+    /// Changes whenever the cell's field may change, and is never given to other content of
+    /// any cell of the terrain: a mirror that remembers the revision it sent knows whether
+    /// the cell changed since, without comparing contents.
+    pub fn revision(&self) -> u64 {
+        self.cell.revision
+    }
+}
+
 /// The grid: geometry, cells and bricks.
 #[derive(Clone, Debug)]
 pub struct Grid {
@@ -97,12 +124,12 @@ pub struct Grid {
     nx: u32,
     ny: u32,
     resolution: u32,
-    pub(crate) cells: Vec<Cell>,
+    pub(in crate::field2d::terrain) cells: Vec<Cell>,
     bricks: Vec<Brick>,
     free_bricks: Vec<u32>,
-    pub(crate) stats: GridStats,
+    pub(in crate::field2d::terrain) stats: GridStats,
     /// The undo journal, when rollback is enabled.
-    pub(crate) journal: Option<Journal>,
+    pub(in crate::field2d::terrain) journal: Option<Journal>,
 }
 
 impl Grid {
@@ -399,6 +426,38 @@ impl Grid {
     }
 
     /// Brick `id`, if it exists.
+    /// The number of cells (`nx * ny`, row-major).
+    pub fn cell_count(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Cell `i`, or `None` past the end.
+    pub fn cell(&self, i: usize) -> Option<CellView<'_>> {
+        self.cells.get(i).map(|cell| CellView { cell })
+    }
+
+    /// Every cell, row-major.
+    pub fn cells(&self) -> impl ExactSizeIterator<Item = CellView<'_>> {
+        self.cells.iter().map(|cell| CellView { cell })
+    }
+
+    /// The cells whose revision differs from the one a mirror last saw (`seen[i]` for cell
+    /// `i`; a cell without an entry counts as changed): the changes since the mirror's copy.
+    pub fn changed_since<'a>(&'a self, seen: &'a [u64]) -> impl Iterator<Item = usize> + 'a {
+        self.cells
+            .iter()
+            .enumerate()
+            .filter(move |(i, c)| seen.get(*i) != Some(&c.revision))
+            .map(|(i, _)| i)
+    }
+
+    /// Brick `id`'s lattice, row-major (y outer), `(resolution + 1)^2` distances and as many
+    /// materials; `None` for an id no cell references.
+    pub fn brick_samples(&self, id: u32) -> Option<(&[f32], &[MaterialId])> {
+        self.brick(id)
+            .map(|b| (b.values.as_slice(), b.materials.as_slice()))
+    }
+
     pub(crate) fn brick(&self, id: u32) -> Option<&Brick> {
         self.bricks.get(id as usize)
     }

@@ -69,19 +69,19 @@ pub struct GridStats {
 /// One cell: base state and the indices (ascending) of the events that can reach it.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Cell {
-    pub(crate) state: CellStateSlot,
-    pub(crate) events: Vec<u32>,
+    pub(in crate::field2d::terrain) state: CellStateSlot,
+    pub(in crate::field2d::terrain) events: Vec<u32>,
     /// Changes whenever the cell's field may change (a number never given to any other
     /// content of any cell of this terrain), so callers can cache values by it.
-    pub(crate) revision: u64,
+    pub(in crate::field2d::terrain) revision: u64,
     /// The tick from which every listed event is settled (the field stops depending on the
     /// tick).
-    pub(crate) settled_at: u32,
+    pub(in crate::field2d::terrain) settled_at: u32,
 }
 
 /// A `CellState` with a `Default` (Base).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct CellStateSlot(pub(crate) CellState);
+pub(crate) struct CellStateSlot(pub(in crate::field2d::terrain) CellState);
 
 impl Default for CellStateSlot {
     fn default() -> Self {
@@ -92,6 +92,6 @@ impl Default for CellStateSlot {
 /// A baked `(n+1) x (n+1)` lattice of distances and materials, row-major (y outer).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Brick {
-    pub(crate) values: Vec<f32>,
-    pub(crate) materials: Vec<MaterialId>,
+    pub(in crate::field2d::terrain) values: Vec<f32>,
+    pub(in crate::field2d::terrain) materials: Vec<MaterialId>,
 }
