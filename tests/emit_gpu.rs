@@ -6,15 +6,13 @@
 mod common;
 mod emit_support;
 
+use common::Rng;
 use craterfield::emit::TerrainEmitter;
 use craterfield::field2d::{Aabb, Graph, Sample, Sdf};
 use craterfield::gpu::GpuContext;
-use emit_support::{
-    every_variant_bounds, every_variant_graph, example_levels, prospero_graph,
-};
+use emit_support::{every_variant_bounds, every_variant_graph, example_levels, prospero_graph};
 use glam::Vec2;
 use wgpu::util::DeviceExt;
-use common::Rng;
 
 /// Points compared per graph.
 const POINTS: usize = 3000;

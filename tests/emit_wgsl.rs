@@ -6,10 +6,10 @@ mod emit_support;
 
 use std::path::{Path, PathBuf};
 
+use common::Rng;
 use craterfield::emit::wgsl::f32_literal;
 use craterfield::emit::{Fate, TerrainEmitter};
 use craterfield::field2d::{Aabb, Graph};
-use common::Rng;
 #[cfg(feature = "gpu")]
 use craterfield::gpu::PipelineCache;
 use emit_support::{every_variant_graph, example_levels, islands_graph, prospero_graph};

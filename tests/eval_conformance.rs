@@ -12,17 +12,11 @@ mod common;
 
 use std::collections::BTreeSet;
 
+use common::Rng;
 use craterfield::field2d::simd::Backend;
 use craterfield::field2d::tape::{Op, Outputs, Program};
 use craterfield::field2d::{Event, Graph, Level, Node, Sample, Sdf, TerrainOptions};
 use glam::Vec2;
-use common::Rng;
-
-
-/// A point uniform in `[-r, r)^2`.
-fn point(rng: &mut Rng, r: f32) -> [f32; 2] {
-    [rng.range(-r, r), rng.range(-r, r)]
-}
 
 fn same(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
@@ -111,7 +105,7 @@ fn check_graph(
 }
 
 fn points_around(r: &mut Rng, radius: f32, n: usize) -> Vec<Vec2> {
-    let mut pts: Vec<Vec2> = (0..n).map(|_| Vec2::from(point(&mut r, radius))).collect();
+    let mut pts: Vec<Vec2> = (0..n).map(|_| Vec2::from(r.square_point(radius))).collect();
     // Integer and half-integer lattice points: where floors, cells and repetitions flip.
     for i in -8..=8 {
         for j in -8..=8 {
@@ -128,36 +122,38 @@ fn random_primitive(r: &mut Rng) -> Node {
     let size = |r: &mut Rng| r.range(1.0, 40.0);
     match r.below(13) {
         0 => Node::Circle {
-            center: point(&mut r, 60.0),
+            center: r.square_point(60.0),
             radius: size(r),
         },
         1 => Node::Box {
-            center: point(&mut r, 60.0),
+            center: r.square_point(60.0),
             half_size: [size(r), size(r)],
         },
         2 => {
             let h = [size(r), size(r)];
             Node::RoundedBox {
-                center: point(&mut r, 60.0),
+                center: r.square_point(60.0),
                 half_size: h,
                 radius: r.range(0.0, h[0].min(h[1])),
             }
         }
         3 => Node::OrientedBox {
-            a: point(&mut r, 60.0),
-            b: point(&mut r, 60.0),
+            a: r.square_point(60.0),
+            b: r.square_point(60.0),
             thickness: r.range(0.5, 10.0),
         },
         4 => Node::Capsule {
-            a: point(&mut r, 60.0),
-            b: point(&mut r, 60.0),
+            a: r.square_point(60.0),
+            b: r.square_point(60.0),
             radius: size(r),
         },
         5 => {
             // A convex polygon: sorted angles around a centre.
             let n = 3 + r.below(6) as usize;
-            let c = point(&mut r, 40.0);
-            let mut angles: Vec<f32> = (0..n).map(|_| r.range(0.0, std::f32::consts::TAU)).collect();
+            let c = r.square_point(40.0);
+            let mut angles: Vec<f32> = (0..n)
+                .map(|_| r.range(0.0, std::f32::consts::TAU))
+                .collect();
             angles.sort_by(f32::total_cmp);
             let rad = size(r);
             let points = angles
@@ -169,25 +165,25 @@ fn random_primitive(r: &mut Rng) -> Node {
         6 => {
             let a = size(r);
             Node::Ellipse {
-                center: point(&mut r, 60.0),
+                center: r.square_point(60.0),
                 radii: [a, a * r.range(0.2, 5.0)],
             }
         }
         7 => Node::Ring {
-            center: point(&mut r, 60.0),
+            center: r.square_point(60.0),
             radius: size(r),
             width: r.range(0.5, 8.0),
         },
         8 => Node::Arc {
-            center: point(&mut r, 60.0),
+            center: r.square_point(60.0),
             radius: size(r),
             width: r.range(0.5, 8.0),
             aperture: r.range(1.0, 180.0),
             rotation: r.range(-360.0, 360.0),
         },
         9 => Node::HalfPlane {
-            point: point(&mut r, 60.0),
-            normal: point(&mut r, 1.0),
+            point: r.square_point(60.0),
+            normal: r.square_point(1.0),
         },
         10 => {
             let n = 2 + r.below(30) as usize;
@@ -198,9 +194,9 @@ fn random_primitive(r: &mut Rng) -> Node {
             }
         }
         11 => Node::Triangle {
-            a: point(&mut r, 60.0),
-            b: point(&mut r, 60.0),
-            c: point(&mut r, 60.0),
+            a: r.square_point(60.0),
+            b: r.square_point(60.0),
+            c: r.square_point(60.0),
         },
         _ => match r.below(3) {
             0 => Node::X,
@@ -246,7 +242,7 @@ fn random_node(r: &mut Rng, depth: u32) -> Node {
             node: child(r),
         },
         8 => Node::Translate {
-            offset: point(&mut r, 50.0),
+            offset: r.square_point(50.0),
             node: child(r),
         },
         9 => Node::Rotate {

@@ -6,10 +6,9 @@ mod common;
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
+use common::Rng;
 use craterfield::field2d::{Exactness, Graph, Node, Sdf};
 use glam::{DVec2, Vec2};
-use common::Rng;
-
 
 fn compile(node: Node) -> Graph {
     Graph::compile(&node, &BTreeMap::new()).expect("valid node")

@@ -6,16 +6,15 @@
 
 mod common;
 
+use common::Rng;
 use craterfield::field2d::simd::Backend;
 use craterfield::field2d::{Event, EventKind, Level, Sample, Sdf, Terrain};
 use glam::Vec2;
-use common::Rng;
 
 /// Hash of distance, gradient and material of every sample.
 const GOLDEN_SAMPLES: u64 = 0x8223_d74a_fd85_933f;
 /// Hash of the distance-only batch path.
 const GOLDEN_DISTANCES: u64 = 0xd531_d7b0_864d_9746;
-
 
 /// The fixed event sequence, in fixed point (no float enters it).
 fn events() -> Vec<Event> {
@@ -29,9 +28,16 @@ fn events() -> Vec<Event> {
                 } else {
                     EventKind::Carve
                 },
-                center: [(r.below(3840 * 256) as i32), 150 * 256 + (r.below(1150 * 256) as i32)],
+                center: [
+                    (r.below(3840 * 256) as i32),
+                    150 * 256 + (r.below(1150 * 256) as i32),
+                ],
                 radius: 2 * 256 + (r.below(58 * 256) as i32),
-                rim: if i % 4 == 0 { (r.below(10 * 256) as i32) } else { 0 },
+                rim: if i % 4 == 0 {
+                    r.below(10 * 256) as i32
+                } else {
+                    0
+                },
                 grow_ticks: if i % 13 == 0 { 8 } else { 0 },
                 tick: i / 50,
                 material: if fill { (i % 5) as u16 } else { 0 },

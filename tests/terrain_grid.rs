@@ -3,13 +3,13 @@
 
 mod common;
 
+use common::Rng;
 use craterfield::det::math::{Dual, Num, V2};
 use craterfield::field2d::{
     CellState, Event, MaterialSource, Sample, Sdf, Terrain, TerrainOptions,
 };
 use glam::Vec2;
 use proptest::prelude::*;
-use common::Rng;
 
 /// Ground half-plane `y < ground` (material 1) united with circles (their own materials).
 #[derive(Clone, Debug)]
@@ -261,7 +261,6 @@ proptest! {
         }
     }
 }
-
 
 fn hills() -> TestBase {
     TestBase {

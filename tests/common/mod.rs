@@ -50,6 +50,11 @@ impl Rng {
         lo + (hi - lo) * self.unit_f64()
     }
 
+    /// Uniform in `[-r, r)^2`.
+    pub(crate) fn square_point(&mut self, r: f32) -> [f32; 2] {
+        [self.range(-r, r), self.range(-r, r)]
+    }
+
     /// Uniform in the box.
     pub(crate) fn point_in(&mut self, b: &Aabb) -> glam::Vec2 {
         glam::Vec2::new(

@@ -329,4 +329,3 @@ pub(crate) fn islands_graph() -> Graph {
     );
     Graph::compile(&root, &BTreeMap::new()).expect("the islands compile")
 }
-
