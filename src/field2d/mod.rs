@@ -32,4 +32,6 @@ pub use level::{DEFAULT_LEVEL_RON, Level, LevelFile, MAX_LEVEL_BYTES, MaterialDe
 pub use node::{Axis, Node, P2};
 pub use sample::{MaterialId, Sample};
 pub use sdf::Sdf;
-pub use terrain::{CellState, CellView, Grid, GridStats, MaterialSource, Terrain, TerrainError, TerrainOptions};
+pub use terrain::{
+    CellState, CellView, Grid, GridStats, MaterialSource, Terrain, TerrainError, TerrainOptions,
+};

@@ -13,7 +13,6 @@ use crate::field2d::aabb::Aabb;
 use crate::field2d::error::LevelError;
 use crate::field2d::node::{Axis, Node, P2};
 use crate::field2d::noise::NOISE_LIPSCHITZ;
-use crate::field2d::sample::MaterialId;
 
 impl Graph {
     /// Compile `root`, resolving `Ref`s against `named`, with the default limits.
@@ -51,7 +50,6 @@ impl Graph {
             program: OnceLock::new(),
         })
     }
-
 }
 
 struct Compiler<'a> {

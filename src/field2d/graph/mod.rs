@@ -8,19 +8,15 @@
 
 mod compile;
 
-use std::collections::BTreeMap;
 use std::sync::{Arc, OnceLock};
 
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
 use super::aabb::Aabb;
-use super::error::LevelError;
-use super::node::{Axis, Node, P2};
-use super::noise::NOISE_LIPSCHITZ;
+use super::node::Axis;
 use super::sample::MaterialId;
 use super::tape::Program;
-use crate::det::math::{self, TAU, sin_cos_deg};
 
 /// Index of a node in a compiled [`Graph`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -244,4 +240,3 @@ impl Graph {
         (0..self.ops.len() as u32).map(NodeId)
     }
 }
-

@@ -9,8 +9,8 @@
 //! lives only in the per-architecture files.
 //!
 //! Every operation is exactly rounded or a bit operation, with the project's semantics
-//! (DESIGN.md, the determinism contract): `min(a, b) = if a < b { a } else { b }`, `max`
-//! likewise, comparisons are ordered (false on NaN), `floor` keeps the sign of zero, and
+//! (the determinism contract of `docs/ARCHITECTURE.md`): `min(a, b) = if a < b { a } else
+//! { b }`, `max` likewise, comparisons are ordered (false on NaN), `floor` keeps the sign of zero, and
 //! float-to-int conversion saturates with NaN giving 0 (Rust's `as i32`). No FMA, no
 //! estimates, no horizontal reductions: a lane computes what the scalar code computes.
 //!

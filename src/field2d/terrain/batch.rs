@@ -16,12 +16,12 @@ use crate::field2d::event::EventKind;
 use crate::field2d::exec::batch::Block;
 use crate::field2d::exec::value::clamp;
 use crate::field2d::exec::{Dv, Fv, P2, Val};
-use crate::field2d::terrain::grid::{self, CellState, MaterialSource, Rect};
 use crate::field2d::sample::{MaterialId, Sample};
 use crate::field2d::sdf::Sdf;
 use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
 use crate::field2d::tape::check;
 use crate::field2d::tape::{EvalError, MatOut};
+use crate::field2d::terrain::grid::{self, CellState, MaterialSource, Rect};
 
 /// Points of one cell (`None`: outside the grid), as a range of the sorted order.
 struct Group {

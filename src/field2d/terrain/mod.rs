@@ -81,19 +81,19 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+use self::grid::Brick;
 use super::event::{Event, EventError, EventKind};
 use super::exec;
-use self::grid::{self, Brick};
 use super::sample::{MaterialId, Sample};
 use super::sdf::Sdf;
 use super::simd::Backend;
 use crate::det::math::{Dual, Num, V2, max, nclamp, nmax, nmin};
 use crate::det::quant::FIXED_ONE;
-use journal::{Entry, Journal};
 pub use grid::{
     CellState, CellView, Grid, GridError, GridStats, MAX_BRICK_RESOLUTION, MAX_CELLS,
     MaterialSource,
 };
+use journal::{Entry, Journal};
 pub use journal::{RollbackError, TerrainMark};
 use plan::{CellPlan, Plans};
 

@@ -11,8 +11,8 @@ use std::sync::{Arc, OnceLock};
 
 use glam::Vec2;
 
-use crate::field2d::terrain::grid::Grid;
 use crate::field2d::tape::{Outputs, Program, Tape};
+use crate::field2d::terrain::grid::Grid;
 
 /// The tapes of one region.
 #[derive(Debug)]

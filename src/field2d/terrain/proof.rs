@@ -31,10 +31,10 @@ use glam::Vec2;
 use super::Terrain;
 use crate::det::math::{Num, V2};
 use crate::field2d::event::EventKind;
-use crate::field2d::terrain::grid::{CellState, MaterialSource};
 use crate::field2d::sample::MaterialId;
 use crate::field2d::sdf::Sdf;
 use crate::field2d::tape::MatOut;
+use crate::field2d::terrain::grid::{CellState, MaterialSource};
 
 /// What a proof may assume about the field inside one grid cell.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -7,8 +7,8 @@ use wgpu::util::DeviceExt;
 
 use super::GpuError;
 use super::uniforms::{GpuCell, GpuEvent, GridFrame, encode_state};
-use crate::field2d::event::Event;
 use crate::field2d::Grid;
+use crate::field2d::event::Event;
 use crate::field2d::sdf::Sdf;
 use crate::field2d::terrain::Terrain;
 
