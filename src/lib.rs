@@ -2,7 +2,11 @@
 //!
 //! The field ([`field2d`]) is a level graph of SDF primitives and operators minus carved
 //! circles plus filled circles, kept in an explosion grid so that a query reads only its cell.
-//! Everything on the collision path is bit-for-bit deterministic (see `DESIGN.md`).
+//! Everything on the collision path ([`det`], [`field2d`], [`sim`], [`net`]) is bit-for-bit
+//! deterministic: see the determinism contract in `docs/ARCHITECTURE.md`, which also maps the
+//! modules and the one direction of every arrow between them.
+//!
+//! A game starts from [`prelude`]: `use craterfield::prelude::*;`.
 
 pub mod det;
 #[cfg(feature = "emit")]

@@ -328,7 +328,8 @@ fn scan(toks: &[Tok], file_module: &[String]) -> FileScan {
             Tok::Ident(first)
                 if matches!(first.as_str(), "crate" | "super" | "self")
                     && toks.get(i + 1) == Some(&Tok::PathSep)
-                    && (i == 0 || toks[i - 1] != Tok::PathSep) =>
+                    && (i == 0 || toks[i - 1] != Tok::PathSep)
+                    && !is_visibility_path(toks, i) =>
             {
                 let mut path = vec![first.clone()];
                 let mut j = i + 1;
@@ -348,6 +349,13 @@ fn scan(toks: &[Tok], file_module: &[String]) -> FileScan {
         i += 1;
     }
     scan
+}
+
+/// The path of a `pub(in path)` visibility, which names a module without using it.
+fn is_visibility_path(toks: &[Tok], i: usize) -> bool {
+    i >= 3
+        && matches!(&toks[i - 1], Tok::Ident(kw) if kw == "in")
+        && matches!(&toks[i - 3], Tok::Ident(kw) if kw == "pub")
 }
 
 /// `pub use`, `pub(crate) use`, `pub(super) use`.
@@ -613,7 +621,9 @@ fn the_reader_follows_reexports_and_skips_prose() {
     let s = scan(&toks, &[]);
     let paths: Vec<String> = s.uses.iter().map(|(_, l, _)| l.path.join("::")).collect();
     assert_eq!(paths, ["crate::e::F", "crate::e::g::H"]);
-    let toks = tokenize("mod tests { use super::*; fn f() { crate::x::y(); } }");
+    let toks = tokenize(
+        "pub(in crate::a) struct S; mod tests { use super::*; fn f() { crate::x::y(); } }",
+    );
     let s = scan(&toks, &["m".to_owned()]);
     assert_eq!(
         s.inline_modules,
@@ -641,5 +651,63 @@ fn crate_files_form_no_cycle() {
         found.is_empty(),
         "files need each other:\n{}",
         report.join("\n")
+    );
+}
+
+/// Every folder of `src/` is in the README's layout table, either on its own row or named in
+/// its parent's row, and every top-level module is in the architecture document's map.
+#[test]
+fn the_layout_table_and_the_module_map_match_the_tree() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = fs::read_to_string(root.join("README.md")).expect("README.md");
+    let architecture =
+        fs::read_to_string(root.join("docs/ARCHITECTURE.md")).expect("docs/ARCHITECTURE.md");
+    let row = |path: &str| {
+        let start = format!("| `src/{path}` |");
+        readme
+            .lines()
+            .find(|l| l.starts_with(&start))
+            .map(str::to_owned)
+    };
+    let mut missing = Vec::new();
+    let mut files = Vec::new();
+    rust_files(&src_dir(), &mut files);
+    let mut folders = BTreeSet::new();
+    for f in &files {
+        let rel = f.strip_prefix(src_dir()).expect("under src");
+        let mut dir = rel.parent();
+        while let Some(d) = dir.filter(|d| !d.as_os_str().is_empty()) {
+            folders.insert(d.to_string_lossy().into_owned());
+            dir = d.parent();
+        }
+        if rel.parent().is_some_and(|p| p.as_os_str().is_empty())
+            && !matches!(rel.to_str(), Some("lib.rs"))
+        {
+            let name = rel.to_string_lossy().into_owned();
+            let module = name.trim_end_matches(".rs").to_owned();
+            if row(&name).is_none() && row(&format!("{module}/")).is_none() {
+                missing.push(format!("README: src/{name}"));
+            }
+        }
+    }
+    for dir in &folders {
+        let own = row(&format!("{dir}/")).is_some();
+        let in_parent = match dir.rsplit_once('/') {
+            Some((parent, name)) => {
+                row(&format!("{parent}/")).is_some_and(|r| r.contains(&format!("`{name}/`")))
+            }
+            None => false,
+        };
+        if !own && !in_parent {
+            missing.push(format!("README: src/{dir}/"));
+        }
+        if !dir.contains('/') && !architecture.contains(&format!("| `{dir}` ")) {
+            missing.push(format!("docs/ARCHITECTURE.md: module {dir}"));
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "not documented:\n{}",
+        missing.join("\n")
     );
 }

@@ -2,8 +2,8 @@
 //!
 //! Everything here uses only exactly rounded IEEE-754 operations (`+ - * /`, `sqrt`,
 //! comparisons, sign-bit operations and selects) in a fixed order, so every platform and every
-//! backend gets the same bits (DESIGN.md, the determinism contract). `min`/`max` are defined by
-//! compare + select, never by `f32::min`, whose NaN and signed-zero handling is
+//! backend gets the same bits (the determinism contract of `docs/ARCHITECTURE.md`).
+//! `min`/`max` are defined by compare + select, never by `f32::min`, whose NaN and signed-zero handling is
 //! platform-defined in SIMD instruction sets. Transcendentals are fixed polynomials.
 //!
 //! The [`Num`] trait lets one generic formula run on plain `f32` (distance only) and on

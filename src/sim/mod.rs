@@ -2,8 +2,8 @@
 //! that carve and fill, snapshots for rollback and a per-tick state hash.
 //!
 //! Every peer of a match steps its own [`World`] with the same [`Input`]s and gets the same
-//! bits (DESIGN.md, the determinism contract): the world uses only exactly rounded `f32`
-//! operations in a fixed order, its settings and inputs are integers, its terrain events are
+//! bits (the determinism contract of `docs/ARCHITECTURE.md`): the world uses only exactly
+//! rounded `f32` operations in a fixed order, its settings and inputs are integers, its terrain events are
 //! fixed point, and every field query goes through the terrain's batch evaluator, whose
 //! backends all agree bit for bit. [`World::state_hash`] summarises a tick in 64 bits for
 //! desync checks; [`World::snapshot`] and [`World::restore`] cost O(bodies + terrain changes
