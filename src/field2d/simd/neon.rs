@@ -8,11 +8,11 @@ use super::{Kernel, Lanes};
 
 /// The NEON backend's token; it exists only where the CPU has Advanced SIMD.
 #[derive(Clone, Copy, Debug)]
-pub struct Neon(());
+pub(super) struct Neon(());
 
 impl Neon {
     /// The token, if this CPU has NEON (every aarch64 Linux CPU does; still detected).
-    pub fn new() -> Option<Neon> {
+    pub(super) fn new() -> Option<Neon> {
         std::arch::is_aarch64_feature_detected!("neon").then_some(Neon(()))
     }
 
