@@ -11,7 +11,7 @@
 use glam::Vec2;
 
 use super::Terrain;
-use super::plan::{CellPlan, Plans};
+use super::cell_tapes::{CellTape, CellTapes};
 use crate::field2d::event::EventKind;
 use crate::field2d::exec::batch::Block;
 use crate::field2d::exec::value::clamp;
@@ -98,9 +98,9 @@ fn group(
 
 /// What a lane block starts from before the cell's events.
 enum Start<'a> {
-    Base(&'a CellPlan),
+    Base(&'a CellTape),
     Constant(f32, Option<MaterialId>),
-    AirFromBase(&'a CellPlan),
+    AirFromBase(&'a CellTape),
     AirFromBrick(u32),
     Brick(u32),
 }
@@ -120,14 +120,15 @@ impl<F: Sdf> Terrain<F> {
     /// Whether each grid cell evaluates the base through a tape specialized to the cell
     /// (on by default). Results do not depend on it; it exists to measure what it saves.
     pub fn set_specialize(&mut self, on: bool) {
-        if let Some(plans) = &mut self.plans {
-            plans.set_specialize(on);
+        if let Some(cell_tapes) = &mut self.cell_tapes {
+            cell_tapes.set_specialize(on);
         }
     }
 
     /// Distances at `points` into `out`, bit-identical to [`Sdf::distance`] at each point.
     pub fn distances(&self, points: &[Vec2], out: &mut [f32]) -> Result<(), EvalError> {
-        let Some((plans, order, groups)) = self.batch(points, out, |p| self.distance(p))? else {
+        let Some((cell_tapes, order, groups)) = self.batch(points, out, |p| self.distance(p))?
+        else {
             return Ok(());
         };
         let (order, groups) = (&order, &groups);
@@ -136,7 +137,7 @@ impl<F: Sdf> Terrain<F> {
             self.backend,
             Distances {
                 t,
-                plans,
+                cell_tapes,
                 points,
                 order,
                 groups,
@@ -148,7 +149,7 @@ impl<F: Sdf> Terrain<F> {
 
     /// Samples at `points` into `out`, bit-identical to [`Sdf::sample`] at each point.
     pub fn samples(&self, points: &[Vec2], out: &mut [Sample]) -> Result<(), EvalError> {
-        let Some((plans, order, groups)) = self.batch(points, out, |p| self.sample(p))? else {
+        let Some((cell_tapes, order, groups)) = self.batch(points, out, |p| self.sample(p))? else {
             return Ok(());
         };
         let (order, groups) = (&order, &groups);
@@ -157,7 +158,7 @@ impl<F: Sdf> Terrain<F> {
             self.backend,
             Samples {
                 t,
-                plans,
+                cell_tapes,
                 points,
                 order,
                 groups,
@@ -176,9 +177,9 @@ impl<F: Sdf> Terrain<F> {
         points: &[Vec2],
         out: &mut [T],
         single: impl Fn(Vec2) -> T,
-    ) -> Result<Option<(&Plans, Vec<u32>, Vec<Group>)>, EvalError> {
+    ) -> Result<Option<(&CellTapes, Vec<u32>, Vec<Group>)>, EvalError> {
         check(points.len(), out.len())?;
-        let Some(plans) = &self.plans else {
+        let Some(cell_tapes) = &self.cell_tapes else {
             for (o, &p) in out.iter_mut().zip(points) {
                 *o = single(p);
             }
@@ -190,7 +191,7 @@ impl<F: Sdf> Terrain<F> {
             }
         }
         let (order, groups) = self.group(points);
-        Ok(Some((plans, order, groups)))
+        Ok(Some((cell_tapes, order, groups)))
     }
 
     fn group(&self, points: &[Vec2]) -> (Vec<u32>, Vec<Group>) {
@@ -198,16 +199,21 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// How a group's lanes start (state and base).
-    fn start<'p>(&'p self, plans: &'p Plans, cell: Option<usize>, material: bool) -> Start<'p> {
+    fn start<'p>(
+        &'p self,
+        cell_tapes: &'p CellTapes,
+        cell: Option<usize>,
+        material: bool,
+    ) -> Start<'p> {
         let m = self.options.band;
         let state = cell
             .and_then(|c| self.grid.cells.get(c))
             .map_or(CellState::Base, |c| c.state.0);
         match state {
-            CellState::Base => Start::Base(plans.get(&self.grid, cell)),
+            CellState::Base => Start::Base(cell_tapes.get(&self.grid, cell)),
             CellState::Solid(mat) => Start::Constant(-m, Some(mat)),
             CellState::Air(src) if material => match src {
-                MaterialSource::Base => Start::AirFromBase(plans.get(&self.grid, cell)),
+                MaterialSource::Base => Start::AirFromBase(cell_tapes.get(&self.grid, cell)),
                 MaterialSource::Constant(mat) => Start::Constant(m, Some(mat)),
                 MaterialSource::Brick(id) => Start::AirFromBrick(id),
             },
@@ -292,7 +298,7 @@ fn gather(points: &[Vec2], idx: &[u32], buf: &mut Vec<Vec2>) {
 
 struct Distances<'a, F: Sdf> {
     t: &'a Terrain<F>,
-    plans: &'a Plans,
+    cell_tapes: &'a CellTapes,
     points: &'a [Vec2],
     order: &'a [u32],
     groups: &'a [Group],
@@ -312,7 +318,7 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
         let mut reaching = Vec::new();
         let step = NB * L::WIDTH;
         for g in self.groups {
-            let start = t.start(self.plans, g.cell, false);
+            let start = t.start(self.cell_tapes, g.cell, false);
             t.prepared_events(g.cell, &mut events);
             if events.is_empty() {
                 // A constant cell: no point is needed.
@@ -375,7 +381,7 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
 
 struct Samples<'a, F: Sdf> {
     t: &'a Terrain<F>,
-    plans: &'a Plans,
+    cell_tapes: &'a CellTapes,
     points: &'a [Vec2],
     order: &'a [u32],
     groups: &'a [Group],
@@ -397,7 +403,7 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
         let mut reaching = Vec::new();
         let step = NB * L::WIDTH;
         for g in self.groups {
-            let start = t.start(self.plans, g.cell, true);
+            let start = t.start(self.cell_tapes, g.cell, true);
             t.prepared_events(g.cell, &mut events);
             if let Some(s) = constant_sample(&start, events.is_empty(), band) {
                 for &i in &self.order[g.start..g.end] {

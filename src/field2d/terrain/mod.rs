@@ -73,7 +73,7 @@ pub(crate) mod grid;
 pub(crate) mod journal;
 mod proof;
 pub use proof::{CellBounds, RectSign};
-mod plan;
+mod cell_tapes;
 
 use std::collections::BTreeSet;
 
@@ -89,13 +89,13 @@ use super::sdf::Sdf;
 use super::simd::Backend;
 use crate::det::math::{Dual, Num, V2, max, nclamp, nmax, nmin};
 use crate::det::quant::FIXED_ONE;
+use cell_tapes::{CellTape, CellTapes};
 pub use grid::{
     CellState, CellView, Grid, GridError, GridStats, MAX_BRICK_RESOLUTION, MAX_CELLS,
     MaterialSource,
 };
 use journal::{Entry, Journal};
 pub use journal::{RollbackError, TerrainMark};
-use plan::{CellPlan, Plans};
 
 /// Largest accepted world coordinate magnitude (bounds, and so event centres).
 pub const MAX_COORD: f32 = 65536.0;
@@ -231,7 +231,7 @@ pub struct Terrain<F: Sdf> {
     /// Cells whose list exceeds the cap because unsettled events block baking.
     over_cap: BTreeSet<usize>,
     /// The base's per-cell tapes, when the base is a tape program (a level graph).
-    plans: Option<Plans>,
+    cell_tapes: Option<CellTapes>,
     /// The backend of batch queries.
     backend: Backend,
     /// The next cell revision to hand out (never reused, not rolled back).
@@ -246,7 +246,7 @@ trait Lift: Num {
     /// The base field at `p`; `material` asks the `f32` path to report the material too.
     fn base<F: Sdf>(f: &F, p: Vec2, material: bool) -> (Self, MaterialId);
     /// The same from the base's tapes for the region holding `p`.
-    fn tape(plan: &CellPlan, p: Vec2, material: bool) -> (Self, MaterialId);
+    fn tape(plan: &CellTape, p: Vec2, material: bool) -> (Self, MaterialId);
 }
 
 impl Lift for f32 {
@@ -261,7 +261,7 @@ impl Lift for f32 {
             (f.distance(p), 0)
         }
     }
-    fn tape(plan: &CellPlan, p: Vec2, material: bool) -> (f32, MaterialId) {
+    fn tape(plan: &CellTape, p: Vec2, material: bool) -> (f32, MaterialId) {
         if material {
             exec::point::value(&plan.material, p)
         } else {
@@ -287,7 +287,7 @@ impl Lift for Dual {
             s.material,
         )
     }
-    fn tape(plan: &CellPlan, p: Vec2, _material: bool) -> (Dual, MaterialId) {
+    fn tape(plan: &CellTape, p: Vec2, _material: bool) -> (Dual, MaterialId) {
         exec::point::dual(&plan.material, p)
     }
 }
@@ -433,7 +433,7 @@ impl TerrainOptions {
             bounds_min - Vec2::splat(grow),
             bounds_max + Vec2::splat(grow),
         );
-        let (nx, ny) = Grid::plan(min, max, self.cell_size, self.brick_resolution)?;
+        let (nx, ny) = Grid::dims_for(min, max, self.cell_size, self.brick_resolution)?;
         let side = self.brick_resolution as u64 + 1;
         // f32 value + u16 material per lattice point.
         let worst = nx as u64 * ny as u64 * side * side * 6;
@@ -461,9 +461,9 @@ impl<F: Sdf> Terrain<F> {
     ) -> Result<Self, TerrainError> {
         let (min, max) = options.check(bounds_min, bounds_max)?;
         let grid = Grid::new(min, max, options.cell_size, options.brick_resolution)?;
-        let plans = base
+        let cell_tapes = base
             .program()
-            .map(|program| Plans::new(program, grid.cells.len(), options.band));
+            .map(|program| CellTapes::new(program, grid.cells.len(), options.band));
         Ok(Terrain {
             base,
             options,
@@ -472,7 +472,7 @@ impl<F: Sdf> Terrain<F> {
             events: Vec::new(),
             grid,
             over_cap: BTreeSet::new(),
-            plans,
+            cell_tapes,
             backend: Backend::best(),
             next_revision: 1,
         })
@@ -874,8 +874,8 @@ impl<F: Sdf> Terrain<F> {
         cell: Option<usize>,
     ) -> (N, MaterialId) {
         let m = self.options.band;
-        if let Some(plans) = &self.plans {
-            let plan = plans.get(&self.grid, cell);
+        if let Some(cell_tapes) = &self.cell_tapes {
+            let plan = cell_tapes.get(&self.grid, cell);
             if let Some(c) = plan.clamped {
                 let mat = if MAT || N::MATERIAL {
                     N::tape(plan, p, true).1
@@ -892,8 +892,8 @@ impl<F: Sdf> Terrain<F> {
     /// The base field at `p` (in `cell`): from the cell's tape when the base has a
     /// program, else from the base itself. Both give the same bits.
     fn base_at<N: Lift>(&self, p: Vec2, cell: Option<usize>, material: bool) -> (N, MaterialId) {
-        match &self.plans {
-            Some(plans) => N::tape(plans.get(&self.grid, cell), p, material),
+        match &self.cell_tapes {
+            Some(cell_tapes) => N::tape(cell_tapes.get(&self.grid, cell), p, material),
             None => N::base(&self.base, p, material),
         }
     }

@@ -139,8 +139,8 @@ impl<F: Sdf> Terrain<F> {
             return (-m, m);
         };
         match c.state.0 {
-            CellState::Base => match &self.plans {
-                Some(plans) => plans.get(&self.grid, Some(cell)).range,
+            CellState::Base => match &self.cell_tapes {
+                Some(cell_tapes) => cell_tapes.get(&self.grid, Some(cell)).range,
                 None => (-m, m),
             },
             CellState::Air(_) => (m, m),
@@ -183,10 +183,10 @@ impl<F: Sdf> Terrain<F> {
     /// The base field's slope bound over cell `cell` (see [`Terrain::cell_bounds`]).
     fn base_cell_lipschitz(&self, cell: usize) -> f32 {
         let global = self.lipschitz();
-        let Some(plans) = &self.plans else {
+        let Some(cell_tapes) = &self.cell_tapes else {
             return global;
         };
-        let plan = plans.get(&self.grid, Some(cell));
+        let plan = cell_tapes.get(&self.grid, Some(cell));
         if plan.clamped.is_some() {
             return 0.0;
         }
@@ -225,8 +225,8 @@ impl<F: Sdf> Terrain<F> {
     /// The base field's material over cell `cell`, when its specialized tape has a
     /// constant material there.
     fn base_material(&self, cell: usize) -> Option<MaterialId> {
-        let plans = self.plans.as_ref()?;
-        match plans.get(&self.grid, Some(cell)).material.material() {
+        let cell_tapes = self.cell_tapes.as_ref()?;
+        match cell_tapes.get(&self.grid, Some(cell)).material.material() {
             MatOut::Const(m) => Some(m),
             MatOut::Value(_) => None,
         }

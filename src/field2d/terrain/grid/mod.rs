@@ -135,7 +135,7 @@ pub struct Grid {
 impl Grid {
     /// Columns and rows of a grid covering `[min, max]` (rounded outwards to whole cells),
     /// checked against the limits without allocating anything.
-    pub(crate) fn plan(
+    pub(crate) fn dims_for(
         min: Vec2,
         max: Vec2,
         cell_size: f32,
@@ -164,7 +164,7 @@ impl Grid {
         cell_size: f32,
         resolution: u32,
     ) -> Result<Grid, GridError> {
-        let (nx, ny) = Grid::plan(min, max, cell_size, resolution)?;
+        let (nx, ny) = Grid::dims_for(min, max, cell_size, resolution)?;
         let inv = 1.0 / cell_size;
         let exact =
             cell_size.to_bits() & 0x007f_ffff == 0 && inv.is_normal() && inv * cell_size == 1.0;

@@ -16,7 +16,7 @@ use crate::field2d::terrain::grid::Grid;
 
 /// The tapes of one region.
 #[derive(Debug)]
-pub(crate) struct CellPlan {
+pub(crate) struct CellTape {
     /// Distance only.
     pub value: Tape,
     /// Distance and material.
@@ -29,8 +29,8 @@ pub(crate) struct CellPlan {
     pub range: (f32, f32),
 }
 
-impl CellPlan {
-    fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32) -> CellPlan {
+impl CellTape {
+    fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32) -> CellTape {
         let mut range = (-band, band);
         let (program, clamped) = match region {
             Some((min, max)) => {
@@ -53,7 +53,7 @@ impl CellPlan {
             }
             None => (program.fuse(), None),
         };
-        CellPlan {
+        CellTape {
             value: program.tape(Outputs::Value),
             material: program.tape(Outputs::ValueMaterial),
             clamped,
@@ -64,17 +64,17 @@ impl CellPlan {
 
 /// Every cell's plan, built lazily (thread-safe).
 #[derive(Clone, Debug)]
-pub(crate) struct Plans {
+pub(crate) struct CellTapes {
     program: Arc<Program>,
-    cells: Vec<OnceLock<Arc<CellPlan>>>,
-    outside: OnceLock<Arc<CellPlan>>,
+    cells: Vec<OnceLock<Arc<CellTape>>>,
+    outside: OnceLock<Arc<CellTape>>,
     specialize: bool,
     band: f32,
 }
 
-impl Plans {
-    pub(super) fn new(program: Arc<Program>, cells: usize, band: f32) -> Plans {
-        Plans {
+impl CellTapes {
+    pub(super) fn new(program: Arc<Program>, cells: usize, band: f32) -> CellTapes {
+        CellTapes {
             program,
             cells: (0..cells).map(|_| OnceLock::new()).collect(),
             outside: OnceLock::new(),
@@ -95,8 +95,8 @@ impl Plans {
     }
 
     /// The plan of `cell` (`None`: outside the grid).
-    pub(super) fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellPlan {
-        let whole = || Arc::new(CellPlan::new(&self.program, None, self.band));
+    pub(super) fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellTape {
+        let whole = || Arc::new(CellTape::new(&self.program, None, self.band));
         match cell.and_then(|c| self.cells.get(c).map(|slot| (c, slot))) {
             Some((c, slot)) if self.specialize => slot.get_or_init(|| {
                 // Padded: the f32 cell lookup may place a point a rounding error outside
@@ -106,7 +106,7 @@ impl Plans {
                 let pad = s / 1024.0 + (min.abs().max_element() + s) / 1_048_576.0;
                 let max = min + Vec2::splat(s + pad);
                 let min = min - Vec2::splat(pad);
-                Arc::new(CellPlan::new(&self.program, Some((min, max)), self.band))
+                Arc::new(CellTape::new(&self.program, Some((min, max)), self.band))
             }),
             _ => self.outside.get_or_init(whole),
         }
