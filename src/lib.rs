@@ -25,6 +25,6 @@ pub mod sim;
 pub mod visdiff;
 
 /// The README's code examples, compiled and run as doctests.
-#[doc = include_str!("../README.md")]
+#[doc = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))]
 #[cfg(all(doctest, feature = "gpu"))]
 pub struct ReadmeDoctests;

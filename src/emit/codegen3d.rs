@@ -18,7 +18,8 @@ use crate::emit::plan3d::{
 use glam::{Mat3, Vec3};
 
 /// The hand-written half of the module.
-pub const MARCH3D_WGSL: &str = include_str!("../../shaders/march3d.wgsl");
+pub const MARCH3D_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/march3d.wgsl"));
 
 /// The complete WGSL compute module rendering `plan` (entry point `main`, workgroup 8x8,
 /// bindings: 0 the `MarchFrame` uniform, 1 an `rgba8unorm` storage texture).

@@ -33,7 +33,8 @@ pub const MAX_LEVEL_BYTES: usize = 16 * 1024 * 1024;
 pub(crate) const MAX_WORLD_COORDINATE: f32 = 65_536.0;
 
 /// The default level, compiled into the library.
-pub const DEFAULT_LEVEL_RON: &str = include_str!("../../levels/default.ron");
+pub const DEFAULT_LEVEL_RON: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/levels/default.ron"));
 
 /// World rectangle of a level.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

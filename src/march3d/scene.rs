@@ -470,10 +470,13 @@ impl Scene {
     /// A builtin scene by name ([`BUILTIN`]).
     pub fn builtin(name: &str) -> Result<Scene, SceneError> {
         let text = match name {
-            "scene0" => include_str!("../../scenes/scene0.ron"),
-            "mandelbulb" => include_str!("../../scenes/mandelbulb.ron"),
-            "sparse" => include_str!("../../scenes/sparse.ron"),
-            "forest" => include_str!("../../scenes/forest.ron"),
+            "scene0" => include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/scene0.ron")),
+            "mandelbulb" => include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/scenes/mandelbulb.ron"
+            )),
+            "sparse" => include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/sparse.ron")),
+            "forest" => include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/forest.ron")),
             other => return Err(SceneError::UnknownBuiltin(other.to_string())),
         };
         Scene::from_ron(text)
@@ -785,14 +788,16 @@ mod tests {
 
     #[test]
     fn bad_values_name_their_place() {
-        let text = include_str!("../../scenes/scene0.ron").replace("r: 3.0", "r: -3.0");
+        let text = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/scene0.ron"))
+            .replace("r: 3.0", "r: -3.0");
         let err = Scene::from_ron(&text).unwrap_err().to_string();
         assert!(err.contains("objects[") && err.contains(".r"), "{err}");
-        let text = include_str!("../../scenes/scene0.ron")
+        let text = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/scene0.ron"))
             .replace("material: \"red\"", "material: \"nope\"");
         let err = Scene::from_ron(&text).unwrap_err().to_string();
         assert!(err.contains("no material named `nope`"), "{err}");
-        let text = include_str!("../../scenes/scene0.ron").replace("fov: 30.0", "fov: NaN");
+        let text = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/scene0.ron"))
+            .replace("fov: 30.0", "fov: NaN");
         assert!(Scene::from_ron(&text).is_err());
         assert!(matches!(
             Scene::from_ron("Scene("),

@@ -2,19 +2,28 @@
 //! assembled into one module per pipeline.
 
 /// Uniforms, full-screen triangle and lattice helpers.
-pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
+pub const COMMON: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/common.wgsl"));
 /// The explosion grid and events over the emitted `base_sample`.
-pub const FIELD: &str = include_str!("../../../shaders/field.wgsl");
+pub const FIELD: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/field.wgsl"));
 /// Pass 1.
-pub const SDF_PASS: &str = include_str!("../../../shaders/sdf_pass.wgsl");
+pub const SDF_PASS: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/sdf_pass.wgsl"
+));
 /// Pass 2.
-pub const RECONSTRUCT: &str = include_str!("../../../shaders/reconstruct.wgsl");
+pub const RECONSTRUCT: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/reconstruct.wgsl"
+));
 /// The shading formula.
-pub const SHADE: &str = include_str!("../../../shaders/shade.wgsl");
+pub const SHADE: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/shade.wgsl"));
 /// Pass 3.
-pub const UPSAMPLE: &str = include_str!("../../../shaders/upsample.wgsl");
+pub const UPSAMPLE: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/upsample.wgsl"
+));
 /// Full-resolution direct evaluation.
-pub const DIRECT: &str = include_str!("../../../shaders/direct.wgsl");
+pub const DIRECT: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/direct.wgsl"));
 
 fn join(parts: &[&str]) -> String {
     parts.join("\n")
