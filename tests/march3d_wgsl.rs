@@ -137,6 +137,12 @@ fn bad_plans_are_errors_not_shaders() {
         matches!(&err, PlanError::Invalid { what, .. } if what == "terrain.frequency"),
         "{err}"
     );
+    // An infinite escape distance is allowed, a zero one is not.
+    let mut plan = scene0();
+    plan.march.escape = f32::INFINITY;
+    assert!(march_wgsl(&plan).is_ok());
+    plan.march.escape = 0.0;
+    assert!(matches!(march_wgsl(&plan), Err(PlanError::Invalid { .. })));
     // The paper's unbounded far plane is allowed.
     let plan = scene0();
     assert!(plan.march.far.is_infinite());

@@ -85,12 +85,15 @@ fn check_plan(plan: &Plan) -> Result<(), PlanError> {
             });
         }
     }
-    for (what, v) in [
-        ("march.step_factor", m.step_factor),
-        ("march.normal_eps", m.normal_eps),
-        ("march.escape", m.escape),
-    ] {
-        positive(what, v)?;
+    positive("march.step_factor", m.step_factor)?;
+    positive("march.normal_eps", m.normal_eps)?;
+    // `escape` may be `+inf` (never escape), but not zero or negative.
+    if m.escape <= 0.0 {
+        return Err(PlanError::Invalid {
+            what: "march.escape".into(),
+            value: m.escape,
+            expected: "positive",
+        });
     }
     if m.relax < 1.0 {
         return Err(PlanError::Invalid {
