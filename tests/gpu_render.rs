@@ -183,6 +183,67 @@ fn gpu_matches_twin_every_mode_and_scale(ctx: &GpuContext) -> TestResult {
     Ok(())
 }
 
+/// Mode refine on the GPU draws the exact picture: every pixel is either proven (sky, or
+/// solid with its material, where only the interior depth shade is interpolated) or
+/// evaluated exactly, so it matches the CPU's exact render and the CPU twin's refine at the
+/// tolerance of float differences, at every scale, and it evaluates only a small part of
+/// the frame.
+fn refine_matches_exact_and_twin(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 300);
+    let pal = palette(&level);
+    let cams = [
+        camera(Vec2::new(1400.0, 380.0), 1.0, 320, 180),
+        camera(Vec2::new(2500.0, 300.0), 0.75, 258, 141),
+    ];
+    let tol = DiffOptions {
+        pixel_tolerance: 8,
+        max_differing_fraction: 0.002,
+        max_mean: 0.5,
+        ..DiffOptions::default()
+    };
+    for (ci, cam) in cams.iter().enumerate() {
+        let exact = render_exact(&terrain, &pal, cam, &ExactRenderOptions::default());
+        for scale in Scale::ALL {
+            let options = RenderOptions {
+                scale,
+                reconstruction: Reconstruction::Refine,
+                ..RenderOptions::default()
+            };
+            let mut r =
+                TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())
+                    .map_err(|e| e.to_string())?;
+            r.prepare(&terrain, &pal, cam).map_err(|e| e.to_string())?;
+            let gpu = render_to_image(&r, cam.width, cam.height, Pipeline::Reduced)
+                .map_err(|e| e.to_string())?;
+            let stats = r.refine_stats().map_err(|e| e.to_string())?;
+            let name = format!("cam{ci}-s{}-refine", scale.divisor());
+            expect_close(&format!("{name}-vs-exact"), &gpu, &exact, &tol)?;
+            let twin = render_twin(&terrain, &pal, cam, &options, 0).map_err(|e| e.to_string())?;
+            expect_close(&format!("{name}-vs-twin"), &gpu, &twin, &tol)?;
+            let blocks = u64::from(cam.width.div_ceil(4)) * u64::from(cam.height.div_ceil(4));
+            if stats.blocks != blocks
+                || stats.sky_blocks + stats.solid_blocks + stats.refined_blocks != blocks
+            {
+                return Err(format!("{name}: block counts do not add up: {stats:?}").into());
+            }
+            if stats.refined_pixel_fraction() > 0.5
+                || stats.sky_blocks == 0
+                || stats.solid_blocks == 0
+            {
+                return Err(format!("{name}: the proofs decided too little: {stats:?}").into());
+            }
+            eprintln!(
+                "{name}: {:.2}% of blocks and {:.2}% of pixels exact, {} evaluations",
+                100.0 * stats.refined_block_fraction(),
+                100.0 * stats.refined_pixel_fraction(),
+                stats.exact_evaluations
+            );
+        }
+    }
+    Ok(())
+}
+
 fn example_levels_match_twin(ctx: &GpuContext) -> TestResult {
     for name in ["caverns", "skyrealm"] {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("levels/{name}.ron"));
@@ -500,7 +561,11 @@ fn resizing_reallocates_and_matches_a_fresh_renderer(ctx: &GpuContext) -> TestRe
 
 fn main() {
     let args = Arguments::from_args();
-    let tests: [(&str, GpuTest); 9] = [
+    let tests: [(&str, GpuTest); 10] = [
+        (
+            "refine_matches_exact_and_twin",
+            refine_matches_exact_and_twin,
+        ),
         (
             "gpu_matches_twin_every_mode_and_scale",
             gpu_matches_twin_every_mode_and_scale,

@@ -42,7 +42,25 @@ struct Row {
     pipeline: &'static str,
     scale: u32,
     mode: String,
+    /// Median ms per frame.
     ms: f64,
+    p95: f64,
+    p99: f64,
+    max: f64,
+}
+
+impl Row {
+    fn new(pipeline: &'static str, scale: u32, mode: &str, t: Times) -> Row {
+        Row {
+            pipeline,
+            scale,
+            mode: mode.into(),
+            ms: t.median,
+            p95: t.p95,
+            p99: t.p99,
+            max: t.max,
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -54,19 +72,17 @@ struct Report {
     cpu_twin_threads: usize,
     cpu_rows: Vec<CpuRow>,
     refine: RefineStats,
+    /// What the GPU's refine did at 1/16 (absent without an adapter).
+    gpu_refine: Option<RefineStats>,
 }
 
-const MODES: [(Reconstruction, Upsample, &str); 4] = [
+const MODES: [(Reconstruction, Upsample, &str); 5] = [
     (Reconstruction::Off, Upsample::Bilinear, "off-bilinear"),
     (Reconstruction::Off, Upsample::BSpline, "off"),
     (Reconstruction::Divergence, Upsample::BSpline, "divergence"),
     (Reconstruction::Planes, Upsample::BSpline, "planes"),
+    (Reconstruction::Refine, Upsample::BSpline, "refine"),
 ];
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-}
 
 /// Times `frames` frames recorded by `record`: GPU timestamps when available, else wall
 /// time of submit + wait.
@@ -97,7 +113,7 @@ fn wait(ctx: &GpuContext) -> Result<(), GpuError> {
 
 /// Times `frames` frames recorded by `record` after two warm-up frames: GPU timestamps when
 /// available, else wall time of submit + wait.
-fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<f64, GpuError> {
+fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<Times, GpuError> {
     for _ in 0..2 {
         ctx.queue.submit([encode_frame(ctx, &mut record, None)?]);
         wait(ctx)?;
@@ -114,7 +130,7 @@ fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
             ts.encode_resolve(&mut encoder);
             ctx.queue.submit([encoder.finish()]);
-            Ok(median(ts.read_ms(&ctx.device)?))
+            Ok(Times::of(ts.read_ms(&ctx.device)?))
         }
         None => {
             let mut ms = Vec::new();
@@ -124,7 +140,7 @@ fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result
                 wait(ctx)?;
                 ms.push(t.elapsed().as_secs_f64() * 1e3);
             }
-            Ok(median(ms))
+            Ok(Times::of(ms))
         }
     }
 }
@@ -146,7 +162,7 @@ fn gpu_rows(
     palette: &[[u8; 3]],
     camera: &Camera,
     frames: u32,
-) -> Result<Vec<Row>, GpuError> {
+) -> Result<(Vec<Row>, Option<RefineStats>), GpuError> {
     let target = Offscreen::new(&ctx.device, camera.width, camera.height)?;
     let format = READBACK_FORMAT;
     let mut rows = Vec::new();
@@ -155,12 +171,8 @@ fn gpu_rows(
     let ms = time_frames(ctx, frames.min(4), |enc, ts| {
         r.render_direct(enc, target.view(), ts)
     })?;
-    rows.push(Row {
-        pipeline: "full-res",
-        scale: 1,
-        mode: "direct".into(),
-        ms,
-    });
+    rows.push(Row::new("full-res", 1, "direct", ms));
+    let mut refine = None;
     for scale in Scale::ALL {
         for (reconstruction, upsample, name) in MODES {
             r.set_options(RenderOptions {
@@ -173,15 +185,13 @@ fn gpu_rows(
             let ms = time_frames(ctx, frames, |enc, ts| {
                 r.render_timed(enc, target.view(), ts)
             })?;
-            rows.push(Row {
-                pipeline: "reduced",
-                scale: scale.divisor(),
-                mode: name.into(),
-                ms,
-            });
+            rows.push(Row::new("reduced", scale.divisor(), name, ms));
+            if reconstruction == Reconstruction::Refine && scale == Scale::Sixteenth {
+                refine = Some(r.refine_stats()?);
+            }
         }
     }
-    Ok(rows)
+    Ok((rows, refine))
 }
 
 /// Median, p95, p99 and max of frame times.
@@ -201,7 +211,7 @@ impl Times {
             ms.get(i).copied().unwrap_or(f64::NAN)
         };
         Times {
-            median: median(ms.clone()),
+            median: ms.get(ms.len() / 2).copied().unwrap_or(f64::NAN),
             p95: at(0.95),
             p99: at(0.99),
             max: ms.last().copied().unwrap_or(f64::NAN),
@@ -295,7 +305,7 @@ pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let (cpu_rows, refine) = cpu_rows(&terrain, &palette, &camera, options.frames)?;
     let cpu_twin_ms = cpu_rows[1].times.median;
-    let (adapter, timing, rows) = match GpuContext::new() {
+    let (adapter, timing, (rows, gpu_refine)) = match GpuContext::new() {
         Ok(ctx) => {
             let timing = if ctx.timestamps {
                 "GPU timestamp queries"
@@ -306,7 +316,7 @@ pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
                 .map_err(|e| e.to_string())?;
             (ctx.describe(), timing, rows)
         }
-        Err(e) => (format!("none ({e})"), "none", Vec::new()),
+        Err(e) => (format!("none ({e})"), "none", (Vec::new(), None)),
     };
     let report = Report {
         adapter,
@@ -316,6 +326,7 @@ pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
         cpu_twin_threads: threads,
         cpu_rows,
         refine,
+        gpu_refine,
     };
     if options.json {
         println!(
@@ -335,16 +346,19 @@ fn print_table(report: &Report, options: &Options) {
     );
     println!("adapter: {} (timing: {})", report.adapter, report.timing);
     println!(
-        "{:<10} {:>5} {:<14} {:>10}",
-        "pipeline", "scale", "mode", "ms/frame"
+        "{:<10} {:>5} {:<14} {:>10} {:>10} {:>10} {:>10}",
+        "pipeline", "scale", "mode", "median ms", "p95", "p99", "max"
     );
     for r in &report.rows {
         println!(
-            "{:<10} {:>5} {:<14} {:>10.3}",
+            "{:<10} {:>5} {:<14} {:>10.3} {:>10.3} {:>10.3} {:>10.3}",
             r.pipeline,
             format!("1/{}", r.scale),
             r.mode,
-            r.ms
+            r.ms,
+            r.p95,
+            r.p99,
+            r.max
         );
     }
     println!("CPU, {} threads:", report.cpu_twin_threads);
@@ -365,17 +379,10 @@ fn print_table(report: &Report, options: &Options) {
             t.max
         );
     }
-    let s = &report.refine;
-    println!(
-        "refine (CPU twin): {} of {} blocks refined ({:.2}%), {} of {} pixels ({:.2}%), {} exact evaluations per frame",
-        s.refined_blocks,
-        s.blocks,
-        100.0 * s.refined_block_fraction(),
-        s.refined_pixels,
-        s.pixels,
-        100.0 * s.refined_pixel_fraction(),
-        s.exact_evaluations
-    );
+    print_refine("CPU twin", &report.refine);
+    if let Some(s) = &report.gpu_refine {
+        print_refine("GPU", s);
+    }
     let full = report
         .rows
         .iter()
@@ -410,11 +417,43 @@ fn print_table(report: &Report, options: &Options) {
             met(direct / refine >= 4.0)
         );
     }
-    println!("GPU refine: not measured (the GPU renderer does not draw refine yet)");
+    let gpu = |mode: &str| {
+        report
+            .rows
+            .iter()
+            .find(|r| r.scale == 16 && r.mode == mode)
+            .map(|r| r.ms)
+    };
+    match (full, gpu("planes"), gpu("refine")) {
+        (Some(direct), Some(planes), Some(refine)) => {
+            let met = |ok: bool| if ok { "met" } else { "NOT met" };
+            println!(
+                "GPU refine vs planes (1/16): {:.2}x the frame time (target <= 1.5x: {}); vs full-res direct: {:.1}x faster (target >= 4x: {})",
+                refine / planes,
+                met(refine / planes <= 1.5),
+                direct / refine,
+                met(direct / refine >= 4.0)
+            );
+        }
+        _ => println!("GPU refine: not measured (no adapter)"),
+    }
     let verdict = if report.cpu_twin_ms < 15.0 {
         "met"
     } else {
         "NOT met"
     };
     println!("CPU twin target < 15 ms per 1080p frame: {verdict}");
+}
+
+fn print_refine(what: &str, s: &RefineStats) {
+    println!(
+        "refine ({what}, 1/16): {} of {} blocks refined ({:.2}%), {} of {} pixels ({:.2}%), {} exact evaluations per frame",
+        s.refined_blocks,
+        s.blocks,
+        100.0 * s.refined_block_fraction(),
+        s.refined_pixels,
+        s.pixels,
+        100.0 * s.refined_pixel_fraction(),
+        s.exact_evaluations
+    );
 }

@@ -34,7 +34,7 @@ impl GpuContext {
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("craterfield"),
             required_features,
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            required_limits: limits_for(&adapter.limits()),
             ..wgpu::DeviceDescriptor::default()
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
@@ -53,5 +53,17 @@ impl GpuContext {
             "{} ({:?}, {:?})",
             self.info.name, self.info.backend, self.info.device_type
         )
+    }
+}
+
+/// Downlevel limits raised to the adapter's texture sizes, and to the storage buffers per
+/// stage that the 2D renderer's refine passes bind (up to 8, where the adapter has them).
+fn limits_for(adapter: &wgpu::Limits) -> wgpu::Limits {
+    let base = wgpu::Limits::downlevel_defaults().using_resolution(adapter.clone());
+    wgpu::Limits {
+        max_storage_buffers_per_shader_stage: adapter
+            .max_storage_buffers_per_shader_stage
+            .clamp(base.max_storage_buffers_per_shader_stage, 8),
+        ..base
     }
 }

@@ -16,6 +16,7 @@
 
 pub(crate) mod grid_mirror;
 pub(crate) mod readback;
+pub(crate) mod refine;
 pub(crate) mod renderer;
 pub mod shaders;
 pub(crate) mod uniforms;

@@ -14,8 +14,10 @@ use glam::Vec2;
 
 use super::GpuError;
 use super::grid_mirror::{GridMirror, UploadStats, buffer_with};
+use super::refine::{ClassifyPasses, ProofMirror, RefineTargets, STORAGE_BUFFERS_NEEDED};
 use super::shaders;
 use super::uniforms::{FrameUniform, MAX_PALETTE, PaletteUniform};
+use crate::render2d::twin::RefineStats;
 
 /// Format of the reduced-scale textures: distance, gradient and material (passes 1-2), or
 /// the four pair values (pass 2, mode planes). Filterable and renderable everywhere.
@@ -42,12 +44,40 @@ pub struct PrepareStats {
 struct FieldPipelines {
     sdf: wgpu::RenderPipeline,
     direct: wgpu::RenderPipeline,
+    /// Compiled only when the renderer draws mode refine.
+    refine: Option<RefineFieldPipelines>,
+}
+
+/// The refine passes that evaluate the field: corner samples and the exact pass.
+struct RefineFieldPipelines {
+    corners: wgpu::ComputePipeline,
+    exact: wgpu::RenderPipeline,
+}
+
+/// The refine passes that do not depend on the level.
+struct RefinePipelines {
+    classify: wgpu::ComputePipeline,
+    blocks: wgpu::ComputePipeline,
+    draw: wgpu::RenderPipeline,
 }
 
 struct Layouts {
     field: wgpu::BindGroupLayout,
     reconstruct: wgpu::BindGroupLayout,
     upsample: wgpu::BindGroupLayout,
+    refine: RefineLayouts,
+}
+
+/// Bind group layouts of the refine passes (bindings as in `shaders/refine_*.wgsl`).
+struct RefineLayouts {
+    /// Group 0 of `cs_classify` and `cs_blocks`.
+    classify: wgpu::BindGroupLayout,
+    /// Group 1 of `cs_corners` (group 0 is the field's).
+    corners: wgpu::BindGroupLayout,
+    /// Group 0 of `fs_refine`.
+    draw: wgpu::BindGroupLayout,
+    /// Group 1 of the exact pass (group 0 is the field's).
+    list: wgpu::BindGroupLayout,
 }
 
 struct LowResTargets {
@@ -61,6 +91,14 @@ struct BindGroups {
     field: wgpu::BindGroup,
     reconstruct: wgpu::BindGroup,
     upsample: wgpu::BindGroup,
+    refine: Option<RefineBinds>,
+}
+
+struct RefineBinds {
+    classify: wgpu::BindGroup,
+    corners: wgpu::BindGroup,
+    draw: wgpu::BindGroup,
+    list: wgpu::BindGroup,
 }
 
 struct Prepared {
@@ -88,12 +126,15 @@ pub struct TerrainRenderer {
     lowres: Option<LowResTargets>,
     bind: Option<BindGroups>,
     prepared: Option<Prepared>,
+    proofs: ProofMirror,
+    refine_pipelines: Option<RefinePipelines>,
+    refine_targets: Option<RefineTargets>,
 }
 
 fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility: wgpu::ShaderStages::all(),
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Uniform,
             has_dynamic_offset: false,
@@ -104,11 +145,23 @@ fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
 }
 
 fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    buffer_entry(
+        binding,
+        wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        true,
+    )
+}
+
+fn buffer_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    read_only: bool,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility,
         ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            ty: wgpu::BufferBindingType::Storage { read_only },
             has_dynamic_offset: false,
             min_binding_size: None,
         },
@@ -119,7 +172,7 @@ fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
 fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Texture {
             sample_type: wgpu::TextureSampleType::Float { filterable: true },
             view_dimension: wgpu::TextureViewDimension::D2,
@@ -168,7 +221,92 @@ impl Layouts {
                     uniform_entry(4),
                 ],
             ),
+            refine: RefineLayouts::new(device),
         }
+    }
+}
+
+impl RefineLayouts {
+    fn new(device: &wgpu::Device) -> RefineLayouts {
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        RefineLayouts {
+            classify: layout(
+                device,
+                "craterfield refine classify",
+                &[
+                    uniform_entry(0),
+                    texture_entry(1),
+                    buffer_entry(2, compute, true),
+                    buffer_entry(3, compute, false),
+                    buffer_entry(4, compute, true),
+                    buffer_entry(5, compute, false),
+                    buffer_entry(6, compute, false),
+                ],
+            ),
+            corners: layout(
+                device,
+                "craterfield refine corners",
+                &[
+                    buffer_entry(0, compute, true),
+                    buffer_entry(1, compute, false),
+                    buffer_entry(2, compute, false),
+                ],
+            ),
+            draw: layout(
+                device,
+                "craterfield refine draw",
+                &[
+                    uniform_entry(0),
+                    buffer_entry(2, fragment, true),
+                    buffer_entry(3, fragment, true),
+                    buffer_entry(4, fragment, true),
+                    uniform_entry(7),
+                ],
+            ),
+            list: layout(
+                device,
+                "craterfield refine exact list",
+                &[buffer_entry(0, wgpu::ShaderStages::VERTEX, true)],
+            ),
+        }
+    }
+}
+
+/// A compute pipeline over `bind_layouts`, validation errors as values.
+fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entry: &str,
+    bind_layouts: &[&wgpu::BindGroupLayout],
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
+        bind_layouts.iter().map(|l| Some(*l)).collect();
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    match pollster::block_on(scope.pop()) {
+        Some(e) => Err(GpuError::Validation {
+            what: format!("{label} ({entry})"),
+            message: e.to_string(),
+        }),
+        None => Ok(pipeline),
     }
 }
 
@@ -181,14 +319,36 @@ fn fullscreen_pipeline(
     bind_layout: &wgpu::BindGroupLayout,
     format: wgpu::TextureFormat,
 ) -> Result<wgpu::RenderPipeline, GpuError> {
+    render_pipeline(
+        device,
+        label,
+        source,
+        ("vs_fullscreen", entry),
+        &[bind_layout],
+        format,
+    )
+}
+
+/// A render pipeline with vertex and fragment entry points `entries` over `bind_layouts`.
+fn render_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entries: (&str, &str),
+    bind_layouts: &[&wgpu::BindGroupLayout],
+    format: wgpu::TextureFormat,
+) -> Result<wgpu::RenderPipeline, GpuError> {
+    let (vertex_entry, entry) = entries;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     });
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
+        bind_layouts.iter().map(|l| Some(*l)).collect();
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
-        bind_group_layouts: &[Some(bind_layout)],
+        bind_group_layouts: &layouts,
         immediate_size: 0,
     });
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -196,7 +356,7 @@ fn fullscreen_pipeline(
         layout: Some(&pipeline_layout),
         vertex: wgpu::VertexState {
             module: &module,
-            entry_point: Some("vs_fullscreen"),
+            entry_point: Some(vertex_entry),
             compilation_options: Default::default(),
             buffers: &[],
         },
@@ -325,6 +485,9 @@ impl TerrainRenderer {
             lowres: None,
             bind: None,
             prepared: None,
+            proofs: ProofMirror::new(device),
+            refine_pipelines: None,
+            refine_targets: None,
         })
     }
 
@@ -356,15 +519,12 @@ impl TerrainRenderer {
         palette: &[[u8; 3]],
         camera: &Camera,
     ) -> Result<PrepareStats, GpuError> {
-        if self.options.reconstruction == Reconstruction::Refine {
-            return Err(GpuError::Unsupported(
-                "draw the refine reconstruction yet: it is drawn by the CPU twin \
-                 (render2d::twin::render_refine)"
-                    .into(),
-            ));
-        }
         let lattice = Lattice::new(camera, self.options.scale)
             .map_err(|e| GpuError::Camera(e.to_string()))?;
+        let refine = self.options.reconstruction == Reconstruction::Refine;
+        if refine {
+            self.check_refine_limits()?;
+        }
         let mut stats = PrepareStats {
             upload: self.mirror.sync(&self.device, &self.queue, terrain)?,
             ..PrepareStats::default()
@@ -373,6 +533,9 @@ impl TerrainRenderer {
             self.bind = None;
         }
         self.ensure_lowres(camera, &lattice)?;
+        if refine {
+            self.ensure_refine(terrain, camera)?;
+        }
         self.write_palette(palette);
         let key = self.select_pipeline(terrain, &lattice, &mut stats)?;
         let dims = self.lowres.as_ref().map_or((1, 1), |t| t.dims);
@@ -421,6 +584,15 @@ impl TerrainRenderer {
         stats.kept_nodes = plan.kept;
         stats.culled_nodes = plan.culled;
         let (device, layouts, format) = (&self.device, &self.layouts, self.target_format);
+        let refine = self.options.reconstruction == Reconstruction::Refine;
+        let lacks_refine = self
+            .field_pipelines
+            .peek(plan.key)
+            .is_some_and(|p| refine && p.refine.is_none());
+        if lacks_refine {
+            // Compiled for another mode: compile again with the refine passes.
+            self.field_pipelines.clear();
+        }
         let (_, hit) = self.field_pipelines.get_or_try_insert_with(plan.key, || {
             let base = emitter.emit(&plan);
             let sdf = fullscreen_pipeline(
@@ -439,10 +611,88 @@ impl TerrainRenderer {
                 &layouts.field,
                 format,
             )?;
-            Ok::<_, GpuError>(FieldPipelines { sdf, direct })
+            let refine = if refine {
+                Some(refine_field_pipelines(device, layouts, &base, format)?)
+            } else {
+                None
+            };
+            Ok::<_, GpuError>(FieldPipelines {
+                sdf,
+                direct,
+                refine,
+            })
         })?;
         stats.pipeline_hit = hit;
         Ok(plan.key)
+    }
+
+    /// Refuses mode refine on a device whose limits its passes exceed.
+    fn check_refine_limits(&self) -> Result<(), GpuError> {
+        let limits = self.device.limits();
+        let have = limits.max_storage_buffers_per_shader_stage;
+        if have < STORAGE_BUFFERS_NEEDED {
+            return Err(GpuError::Unsupported(format!(
+                "draw mode refine with {have} storage buffers per shader stage (it needs \
+                 {STORAGE_BUFFERS_NEEDED}; request them when creating the device)"
+            )));
+        }
+        if limits.max_compute_invocations_per_workgroup < 64 {
+            return Err(GpuError::Unsupported(
+                "draw mode refine without 64 compute invocations per workgroup".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Compiles the level-independent refine passes once, syncs the cell proofs and sizes
+    /// the per-frame buffers for the camera.
+    fn ensure_refine(&mut self, terrain: &Terrain<Graph>, camera: &Camera) -> Result<(), GpuError> {
+        if self.refine_pipelines.is_none() {
+            self.refine_pipelines = Some(refine_pipelines(
+                &self.device,
+                &self.layouts,
+                self.target_format,
+            )?);
+        }
+        let fingerprint = crate::emit::graph_fingerprint(terrain.base());
+        if self
+            .proofs
+            .sync(&self.device, &self.queue, terrain, fingerprint)?
+        {
+            self.bind = None;
+        }
+        let fits = self
+            .refine_targets
+            .as_ref()
+            .is_some_and(|t| t.fits(camera.width, camera.height));
+        if !fits {
+            self.refine_targets = Some(RefineTargets::new(
+                &self.device,
+                camera.width,
+                camera.height,
+            )?);
+            self.bind = None;
+        }
+        Ok(())
+    }
+
+    /// What mode refine did in the last frame submitted (waits for the device): blocks
+    /// proven and evaluated, pixels evaluated exactly, and field evaluations (texels,
+    /// corner samples, exact pixels).
+    pub fn refine_stats(&self) -> Result<RefineStats, GpuError> {
+        let (prepared, _, _) = self.ready()?;
+        let targets = self.refine_targets.as_ref().ok_or(GpuError::NotPrepared)?;
+        if self.options.reconstruction != Reconstruction::Refine {
+            return Err(GpuError::NotPrepared);
+        }
+        let l = &prepared.lattice;
+        let c = &prepared.camera;
+        targets.stats(
+            &self.device,
+            &self.queue,
+            u64::from(l.cols) * u64::from(l.rows),
+            u64::from(c.width) * u64::from(c.height),
+        )
     }
 
     fn write_palette(&mut self, palette: &[[u8; 3]]) {
@@ -568,11 +818,74 @@ impl TerrainRenderer {
                 },
             ],
         });
+        let refine = match (&self.refine_targets, &self.refine_pipelines) {
+            (Some(targets), Some(_)) if self.options.reconstruction == Reconstruction::Refine => {
+                Some(self.refine_binds(targets, &lowres.texels))
+            }
+            _ => None,
+        };
         Ok(BindGroups {
             field,
             reconstruct,
             upsample,
+            refine,
         })
+    }
+
+    fn refine_binds(&self, t: &RefineTargets, texels: &wgpu::TextureView) -> RefineBinds {
+        let group =
+            |label: &str, layout: &wgpu::BindGroupLayout, entries: &[wgpu::BindGroupEntry]| {
+                self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(label),
+                    layout,
+                    entries,
+                })
+            };
+        let l = &self.layouts.refine;
+        let proofs = self.proofs.buffer();
+        RefineBinds {
+            classify: group(
+                "craterfield refine classify",
+                &l.classify,
+                &[
+                    buffer(0, &self.frame),
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(texels),
+                    },
+                    buffer(2, proofs),
+                    buffer(3, &t.blocks),
+                    buffer(4, &t.corners),
+                    buffer(5, &t.work),
+                    buffer(6, &t.list),
+                ],
+            ),
+            corners: group(
+                "craterfield refine corners",
+                &l.corners,
+                &[
+                    buffer(0, &t.blocks),
+                    buffer(1, &t.corners),
+                    buffer(2, &t.work),
+                ],
+            ),
+            draw: group(
+                "craterfield refine draw",
+                &l.draw,
+                &[
+                    buffer(0, &self.frame),
+                    buffer(2, proofs),
+                    buffer(3, &t.blocks),
+                    buffer(4, &t.corners),
+                    buffer(7, &self.palette),
+                ],
+            ),
+            list: group(
+                "craterfield refine exact list",
+                &l.list,
+                &[buffer(0, &t.list)],
+            ),
+        }
     }
 
     /// Records passes 1 and 2 (into the renderer's own textures). Call before [`Self::draw`]
@@ -601,10 +914,13 @@ impl TerrainRenderer {
             l,
             timestamp_start,
         );
+        if self.options.reconstruction == Reconstruction::Refine {
+            return self.encode_refine(encoder, pipelines, bind);
+        }
         let second = match self.options.reconstruction {
-            Reconstruction::Off => None,
+            Reconstruction::Off | Reconstruction::Refine => None,
             Reconstruction::Divergence => Some((&self.divergence, &lowres.padded)),
-            Reconstruction::Planes | Reconstruction::Refine => Some((&self.pairs, &lowres.pairs)),
+            Reconstruction::Planes => Some((&self.pairs, &lowres.pairs)),
         };
         if let Some((pipeline, target)) = second {
             lowres_pass(
@@ -620,12 +936,66 @@ impl TerrainRenderer {
         Ok(())
     }
 
+    /// The refine classification after pass 1 (mode refine needs no pass 2).
+    fn encode_refine(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        field: &FieldPipelines,
+        bind: &BindGroups,
+    ) -> Result<(), GpuError> {
+        let (Some(shared), Some(own), Some(binds), Some(targets)) = (
+            &self.refine_pipelines,
+            &field.refine,
+            &bind.refine,
+            &self.refine_targets,
+        ) else {
+            return Err(GpuError::NotPrepared);
+        };
+        targets.encode(
+            encoder,
+            ClassifyPasses {
+                classify: &shared.classify,
+                corners: &own.corners,
+                blocks: &shared.blocks,
+                classify_bind: &binds.classify,
+                field_bind: &bind.field,
+                corners_bind: &binds.corners,
+            },
+        );
+        Ok(())
+    }
+
+    /// Pass 3 of mode refine: the proven blocks, then the exact blocks drawn over them.
+    fn draw_refine(&self, pass: &mut wgpu::RenderPass<'_>, key: u64) -> Result<(), GpuError> {
+        let bind = self.bind.as_ref().ok_or(GpuError::NotPrepared)?;
+        let field = self.field_pipelines.peek(key);
+        let (Some(shared), Some(own), Some(binds), Some(targets)) = (
+            &self.refine_pipelines,
+            field.and_then(|f| f.refine.as_ref()),
+            &bind.refine,
+            &self.refine_targets,
+        ) else {
+            return Err(GpuError::NotPrepared);
+        };
+        pass.set_pipeline(&shared.draw);
+        pass.set_bind_group(0, &binds.draw, &[]);
+        pass.draw(0..3, 0..1);
+        pass.set_pipeline(&own.exact);
+        pass.set_bind_group(0, &bind.field, &[]);
+        pass.set_bind_group(1, &binds.list, &[]);
+        pass.draw_indirect(&targets.work, 0);
+        Ok(())
+    }
+
     /// Records pass 3 into the caller's render pass, whose target must be the camera's size
     /// and this renderer's format.
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), GpuError> {
         let (prepared, bind, _) = self.ready()?;
         let c = &prepared.camera;
         pass.set_viewport(0.0, 0.0, c.width as f32, c.height as f32, 0.0, 1.0);
+        if self.options.reconstruction == Reconstruction::Refine {
+            return self.draw_refine(pass, prepared.key);
+        }
         pass.set_pipeline(&self.upsample[upsample_index(&self.options)]);
         pass.set_bind_group(0, &bind.upsample, &[]);
         pass.draw(0..3, 0..1);
@@ -708,6 +1078,74 @@ impl TerrainRenderer {
     pub fn target_format(&self) -> wgpu::TextureFormat {
         self.target_format
     }
+}
+
+fn buffer(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: b.as_entire_binding(),
+    }
+}
+
+/// The level-independent refine pipelines.
+fn refine_pipelines(
+    device: &wgpu::Device,
+    layouts: &Layouts,
+    format: wgpu::TextureFormat,
+) -> Result<RefinePipelines, GpuError> {
+    let classify_src = shaders::refine_classify_module();
+    let l = &layouts.refine;
+    Ok(RefinePipelines {
+        classify: compute_pipeline(
+            device,
+            "craterfield refine classify",
+            &classify_src,
+            "cs_classify",
+            &[&l.classify],
+        )?,
+        blocks: compute_pipeline(
+            device,
+            "craterfield refine classify",
+            &classify_src,
+            "cs_blocks",
+            &[&l.classify],
+        )?,
+        draw: fullscreen_pipeline(
+            device,
+            "craterfield refine draw",
+            &shaders::refine_draw_module(),
+            "fs_refine",
+            &l.draw,
+            format,
+        )?,
+    })
+}
+
+/// The refine pipelines over the emitted base field `base`.
+fn refine_field_pipelines(
+    device: &wgpu::Device,
+    layouts: &Layouts,
+    base: &str,
+    format: wgpu::TextureFormat,
+) -> Result<RefineFieldPipelines, GpuError> {
+    let l = &layouts.refine;
+    Ok(RefineFieldPipelines {
+        corners: compute_pipeline(
+            device,
+            "craterfield refine corners",
+            &shaders::refine_corners_module(base),
+            "cs_corners",
+            &[&layouts.field, &l.corners],
+        )?,
+        exact: render_pipeline(
+            device,
+            "craterfield refine exact",
+            &shaders::refine_exact_module(base),
+            ("vs_exact_block", "fs_direct"),
+            &[&layouts.field, &l.list],
+            format,
+        )?,
+    })
 }
 
 /// The world rectangle the lattice's texels cover.

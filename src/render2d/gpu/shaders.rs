@@ -25,6 +25,37 @@ pub const UPSAMPLE: &str = include_str!(concat!(
 /// Full-resolution direct evaluation.
 pub const DIRECT: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/direct.wgsl"));
 
+/// Mode refine: block grid, classes and counters.
+pub const REFINE_COMMON: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/refine_common.wgsl"
+));
+/// Mode refine: the block proof.
+pub const REFINE_PROOF: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/refine_proof.wgsl"
+));
+/// Mode refine: classification levels 0 and 1.
+pub const REFINE_CLASSIFY: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/refine_classify.wgsl"
+));
+/// Mode refine: exact samples at the open blocks' corners.
+pub const REFINE_CORNERS: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/refine_corners.wgsl"
+));
+/// Mode refine: the proven blocks drawn.
+pub const REFINE_DRAW: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/refine_draw.wgsl"
+));
+/// Mode refine: the exact pass's block quads.
+pub const REFINE_EXACT: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/refine_exact.wgsl"
+));
+
 fn join(parts: &[&str]) -> String {
     parts.join("\n")
 }
@@ -47,4 +78,32 @@ pub fn reconstruct_module() -> String {
 /// Pass 3.
 pub fn upsample_module() -> String {
     join(&[COMMON, SHADE, UPSAMPLE])
+}
+
+/// Mode refine, classification (`cs_classify`, `cs_blocks`).
+pub fn refine_classify_module() -> String {
+    join(&[COMMON, REFINE_COMMON, REFINE_PROOF, REFINE_CLASSIFY])
+}
+
+/// Mode refine, the corner samples over the emitted base field (`cs_corners`).
+pub fn refine_corners_module(base_field: &str) -> String {
+    join(&[COMMON, base_field, FIELD, REFINE_COMMON, REFINE_CORNERS])
+}
+
+/// Mode refine, the proven blocks (`fs_refine`).
+pub fn refine_draw_module() -> String {
+    join(&[COMMON, SHADE, REFINE_COMMON, REFINE_PROOF, REFINE_DRAW])
+}
+
+/// Mode refine, the exact pass over the emitted base field (`vs_exact_block`, `fs_direct`).
+pub fn refine_exact_module(base_field: &str) -> String {
+    join(&[
+        COMMON,
+        base_field,
+        FIELD,
+        SHADE,
+        DIRECT,
+        REFINE_COMMON,
+        REFINE_EXACT,
+    ])
 }

@@ -3,7 +3,7 @@
 //! and the uniform structs have the same layout on both sides.
 
 use super::shaders;
-use super::uniforms::{FrameUniform, GpuCell, GpuEvent};
+use super::uniforms::{FrameUniform, GpuBlockState, GpuCell, GpuCellProof, GpuEvent, GpuWork};
 use crate::emit::terrain2d::TerrainEmitter;
 use crate::field2d::Level;
 
@@ -37,7 +37,17 @@ fn level_fields() -> Vec<(String, String)> {
 fn every_pass_validates_over_every_example_level() {
     validate("reconstruct", &shaders::reconstruct_module());
     validate("upsample", &shaders::upsample_module());
+    validate("refine classify", &shaders::refine_classify_module());
+    validate("refine draw", &shaders::refine_draw_module());
     for (name, field) in level_fields() {
+        validate(
+            &format!("refine corners over {name}"),
+            &shaders::refine_corners_module(&field),
+        );
+        validate(
+            &format!("refine exact over {name}"),
+            &shaders::refine_exact_module(&field),
+        );
         validate(
             &format!("sdf pass over {name}"),
             &shaders::sdf_module(&field),
@@ -157,4 +167,34 @@ fn uniform_structs_match_their_rust_twins() {
     assert_eq!(size as usize, std::mem::size_of::<GpuEvent>());
     let (size, _) = layout_of(&module, "GpuCell");
     assert_eq!(size as usize, std::mem::size_of::<GpuCell>());
+}
+
+/// The entry points of a module.
+fn entry_names(module: &naga::Module) -> Vec<String> {
+    module.entry_points.iter().map(|e| e.name.clone()).collect()
+}
+
+#[test]
+fn refine_modules_have_their_entry_points_and_struct_layouts() {
+    let classify = validate("refine classify", &shaders::refine_classify_module());
+    let names = entry_names(&classify);
+    assert!(names.contains(&"cs_classify".into()) && names.contains(&"cs_blocks".into()));
+    let draw = validate("refine draw", &shaders::refine_draw_module());
+    assert!(entry_names(&draw).contains(&"fs_refine".into()));
+    let (_, field) = &level_fields()[0];
+    let corners = validate("refine corners", &shaders::refine_corners_module(field));
+    assert!(entry_names(&corners).contains(&"cs_corners".into()));
+    let exact = validate("refine exact", &shaders::refine_exact_module(field));
+    let names = entry_names(&exact);
+    assert!(names.contains(&"vs_exact_block".into()) && names.contains(&"fs_direct".into()));
+    for (name, size) in [
+        ("CellProof", std::mem::size_of::<GpuCellProof>()),
+        ("BlockState", std::mem::size_of::<GpuBlockState>()),
+        ("Work", std::mem::size_of::<GpuWork>()),
+    ] {
+        let (found, _) = layout_of(&classify, name);
+        assert_eq!(found as usize, size, "{name}");
+    }
+    let (_, offsets) = layout_of(&classify, "Work");
+    assert_eq!(offsets[4], ("counters".to_string(), 16));
 }

@@ -210,3 +210,81 @@ pub(crate) fn encode_state(state: CellState) -> (u32, u32) {
         CellState::Brick(id) => (5, id),
     }
 }
+
+/// The refine proof's view of one grid cell; `CellProof` in `shaders/refine_proof.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub(crate) struct GpuCellProof {
+    /// Slope bound of the field over the cell (`Terrain::cell_bounds`).
+    pub lipschitz: f32,
+    /// Jump allowance at the cell's borders.
+    pub error: f32,
+    /// The cell's constant material, or [`MATERIAL_NONE`].
+    pub material: u32,
+    /// 1 when the bounds are known (finite).
+    pub known: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<GpuCellProof>() == 16);
+
+/// `MATERIAL_NONE` in `shaders/refine_common.wgsl`: the material is not constant.
+pub(crate) const MATERIAL_NONE: u32 = u32::MAX;
+
+/// `UNBOUNDED` in `shaders/refine_proof.wgsl`: bounds at or past it prove nothing.
+pub(crate) const UNBOUNDED: f32 = 1.0e30;
+
+impl GpuCellProof {
+    /// A cell with slope bound `lipschitz`, border error `error` and constant material
+    /// `material`; bounds that are not finite (or past [`UNBOUNDED`]) are unknown.
+    pub(crate) fn new(lipschitz: f32, error: f32, material: Option<u16>) -> GpuCellProof {
+        let known = lipschitz.is_finite()
+            && error.is_finite()
+            && lipschitz < UNBOUNDED * 0.5
+            && error < UNBOUNDED * 0.5;
+        GpuCellProof {
+            lipschitz: if known { lipschitz } else { 0.0 },
+            error: if known { error } else { 0.0 },
+            material: material.map_or(MATERIAL_NONE, u32::from),
+            known: u32::from(known),
+        }
+    }
+}
+
+/// One pixel block's class and bounds; `BlockState` in `shaders/refine_common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub(crate) struct GpuBlockState {
+    /// `CLASS_*` in `refine_common.wgsl`.
+    pub kind: u32,
+    /// Proven material, `MATERIAL_PER_CELL` or [`MATERIAL_NONE`].
+    pub material: u32,
+    /// Lower bound of the distance over the block.
+    pub lo: f32,
+    /// Upper bound.
+    pub hi: f32,
+}
+
+const _: () = assert!(std::mem::size_of::<GpuBlockState>() == 16);
+
+/// The exact pass's indirect draw and the frame's refine counters; `Work` in
+/// `shaders/refine_common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub(crate) struct GpuWork {
+    /// Indirect draw arguments: vertex count (6), instances, first vertex, first instance.
+    pub draw: [u32; 4],
+    /// `COUNT_*` slots of `refine_common.wgsl`.
+    pub counters: [u32; 8],
+}
+
+const _: () = assert!(std::mem::size_of::<GpuWork>() == 48);
+
+impl GpuWork {
+    /// What the frame starts from: one quad per exact block, none yet, counters at zero.
+    pub(crate) fn start() -> GpuWork {
+        GpuWork {
+            draw: [6, 0, 0, 0],
+            counters: [0; 8],
+        }
+    }
+}

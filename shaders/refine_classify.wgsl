@@ -1,0 +1,131 @@
+// Mode `refine` on the GPU, the two classification levels (docs/render2d-pipeline.md,
+// "Refine on the GPU"). Needs common.wgsl, refine_common.wgsl and refine_proof.wgsl.
+// Level 0 (`cs_classify`) bounds each block from the pass-1 texels around it; level 1
+// (`cs_blocks`) bounds the blocks level 0 left open from the exact samples at their four
+// corners (written by `cs_corners`, refine_corners.wgsl), and appends the blocks it cannot
+// prove to the list the exact pass draws.
+
+@group(0) @binding(1) var texels: texture_2d<f32>;
+@group(0) @binding(3) var<storage, read_write> blocks: array<BlockState>;
+@group(0) @binding(4) var<storage, read> corners: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read_write> work: Work;
+@group(0) @binding(6) var<storage, read_write> exact_list: array<u32>;
+
+// Most texels per axis level 0 reads around one block.
+const MAX_TEXELS: i32 = 4;
+
+// Sky, deep solid (with its material) or still open, from lo/hi bounds and the material
+// proof over the block's pixel rectangle.
+fn decide(lo: f32, hi: f32, rect: vec4<f32>, final_level: bool) -> BlockState {
+    if lo >= sky_at() {
+        return BlockState(CLASS_SKY, 0u, lo, hi);
+    }
+    if hi <= solid_at() {
+        let material = span_material(cell_span(rect.xy, rect.zw));
+        if material != MATERIAL_NONE {
+            if hi <= deep_at() {
+                return BlockState(CLASS_DEEP, material, lo, hi);
+            }
+            if final_level {
+                return BlockState(CLASS_SHADED, material, lo, hi);
+            }
+        }
+    }
+    return BlockState(select(CLASS_NEED, CLASS_EXACT, final_level), MATERIAL_NONE, lo, hi);
+}
+
+fn count_final(kind: u32) {
+    atomicAdd(&work.counters[COUNT_BLOCKS], 1u);
+    switch kind {
+        case CLASS_SKY: {
+            atomicAdd(&work.counters[COUNT_SKY], 1u);
+        }
+        case CLASS_DEEP, CLASS_SHADED: {
+            atomicAdd(&work.counters[COUNT_SOLID], 1u);
+        }
+        default: {}
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_classify(@builtin(global_invocation_id) id: vec3<u32>) {
+    let dims = block_dims();
+    if id.x >= dims.x || id.y >= dims.y {
+        return;
+    }
+    let rect = block_rect(block_pixels(id.xy));
+    // Texels of every quad the block touches: columns grow with x, rows with -y.
+    let la = to_lattice(vec2<f32>(rect.x, rect.w));
+    let lz = to_lattice(vec2<f32>(rect.z, rect.y));
+    let c0 = i32(floor(la.x));
+    let r0 = i32(floor(la.y));
+    let c1 = min(i32(floor(lz.x)) + 1, c0 + MAX_TEXELS - 1);
+    let r1 = min(i32(floor(lz.y)) + 1, r0 + MAX_TEXELS - 1);
+    // Every segment from a texel to the block lies in the box of both.
+    let ta = texel_center(clamp_texel(vec2<i32>(c0, r0)).x, clamp_texel(vec2<i32>(c0, r0)).y);
+    let tz = texel_center(clamp_texel(vec2<i32>(c1, r1)).x, clamp_texel(vec2<i32>(c1, r1)).y);
+    let box_lo = min(min(rect.xy, vec2<f32>(ta.x, tz.y)), vec2<f32>(tz.x, ta.y));
+    let box_hi = max(max(rect.zw, vec2<f32>(tz.x, ta.y)), vec2<f32>(ta.x, tz.y));
+    let bounds = span_bounds(cell_span(box_lo, box_hi));
+    var lo = -UNBOUNDED;
+    var hi = UNBOUNDED;
+    if bounds.x < UNBOUNDED {
+        for (var r = r0; r <= r1; r++) {
+            for (var c = c0; c <= c1; c++) {
+                let t = clamp_texel(vec2<i32>(c, r));
+                let d = textureLoad(texels, t, 0).x;
+                // f16 keeps 11 bits: |d| / 1024 covers its rounding twice over.
+                let k = reach(texel_center(t.x, t.y), d, rect, bounds, 1.0 / 1024.0);
+                lo = max(lo, d - k);
+                hi = min(hi, d + k);
+            }
+        }
+    }
+    let state = decide(lo, hi, rect, false);
+    blocks[id.y * dims.x + id.x] = state;
+    if state.kind != CLASS_NEED {
+        count_final(state.kind);
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
+    let dims = block_dims();
+    if id.x >= dims.x || id.y >= dims.y {
+        return;
+    }
+    let index = id.y * dims.x + id.x;
+    let open = blocks[index];
+    if open.kind != CLASS_NEED {
+        return;
+    }
+    let px = block_pixels(id.xy);
+    let rect = block_rect(px);
+    let far_corner = pixel_to_world(vec2<f32>(f32((id.x + 1u) * BLOCK), f32((id.y + 1u) * BLOCK)));
+    let box_lo = vec2<f32>(rect.x, far_corner.y);
+    let box_hi = vec2<f32>(far_corner.x, rect.w);
+    let bounds = span_bounds(cell_span(box_lo, box_hi));
+    var lo = open.lo;
+    var hi = open.hi;
+    if bounds.x < UNBOUNDED {
+        for (var k = 0u; k < 4u; k++) {
+            let i = id.x + (k & 1u);
+            let j = id.y + (k >> 1u);
+            let at = pixel_to_world(vec2<f32>(f32(i * BLOCK), f32(j * BLOCK)));
+            let d = corners[corner_index(i, j)].x;
+            let r = reach(at, d, rect, bounds, 1.0e-5);
+            lo = max(lo, d - r);
+            hi = min(hi, d + r);
+        }
+    }
+    let state = decide(lo, hi, rect, true);
+    blocks[index] = state;
+    count_final(state.kind);
+    if state.kind == CLASS_EXACT {
+        let slot = atomicAdd(&work.instance_count, 1u);
+        exact_list[slot] = index;
+        atomicAdd(&work.counters[COUNT_EXACT_BLOCKS], 1u);
+        let pixels = (px.z - px.x + 1u) * (px.w - px.y + 1u);
+        atomicAdd(&work.counters[COUNT_EXACT_PIXELS], pixels);
+    }
+}

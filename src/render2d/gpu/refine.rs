@@ -1,0 +1,269 @@
+//! Mode `refine` on the GPU (`docs/render2d-pipeline.md`, "Refine on the GPU"): the
+//! per-cell proof data mirrored from the terrain, the block, corner, work and exact-list
+//! buffers of one frame size, and the passes that use them.
+//!
+//! After pass 1, one compute pass runs three dispatches: `cs_classify` (level 0: every
+//! `4 x 4` pixel block bounded from the texels around it), `cs_corners` (exact samples at the
+//! corners of the blocks level 0 left open) and `cs_blocks` (level 1: those blocks bounded
+//! from their corner samples; the ones still open are appended to a list with an atomic
+//! counter that is also the instance count of an indirect draw). Pass 3 draws the proven
+//! blocks full screen (`fs_refine`), then the listed blocks as quads whose fragment stage is
+//! the direct evaluation, so every pixel that no proof covers is the exact render's.
+
+use super::GpuError;
+use super::grid_mirror::buffer_with;
+use super::uniforms::{GpuBlockState, GpuCellProof, GpuWork};
+use crate::field2d::sdf::Sdf;
+use crate::field2d::terrain::Terrain;
+use crate::gpu::map_read;
+use crate::render2d::twin::{REFINE_BLOCK as BLOCK, RefineStats};
+
+/// Storage buffers one stage of the refine passes binds at most (`cs_corners`: the four of
+/// the field, blocks, corners and work).
+pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 7;
+
+/// Workgroup side of the refine compute entry points (`@workgroup_size(8, 8)`).
+const WORKGROUP: u32 = 8;
+
+/// The terrain's per-cell slope bounds and constant materials, then one record for the
+/// points outside the grid, kept in step with the grid's cell revisions.
+pub(crate) struct ProofMirror {
+    buffer: wgpu::Buffer,
+    records: Vec<GpuCellProof>,
+    sent_revisions: Vec<u64>,
+    /// Fingerprint of the base field and grid the records describe.
+    identity: Option<(u64, (u32, u32))>,
+}
+
+impl ProofMirror {
+    pub(crate) fn new(device: &wgpu::Device) -> ProofMirror {
+        ProofMirror {
+            buffer: proof_buffer(device, 1),
+            records: Vec::new(),
+            sent_revisions: Vec::new(),
+            identity: None,
+        }
+    }
+
+    pub(crate) fn buffer(&self) -> &wgpu::Buffer {
+        &self.buffer
+    }
+
+    /// Brings the records up to date with `terrain` (whose base field has content
+    /// fingerprint `fingerprint`); `true` when the buffer was reallocated.
+    pub(crate) fn sync<F: Sdf>(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        terrain: &Terrain<F>,
+        fingerprint: u64,
+    ) -> Result<bool, GpuError> {
+        let grid = terrain.grid();
+        let cells = grid.cell_count();
+        let identity = (fingerprint, grid.dims());
+        let reset = self.identity != Some(identity);
+        if reset {
+            let bytes = (cells as u64 + 1) * 16;
+            let limit = device.limits().max_storage_buffer_binding_size;
+            if bytes > limit {
+                return Err(GpuError::LimitsTooLow {
+                    what: "refine cell proofs",
+                    needed: bytes,
+                    limit,
+                });
+            }
+            self.buffer = proof_buffer(device, cells as u64 + 1);
+            self.records = vec![GpuCellProof::default(); cells + 1];
+            self.sent_revisions = vec![u64::MAX; cells];
+            self.identity = Some(identity);
+        }
+        let dirty: Vec<usize> = grid.changed_since(&self.sent_revisions).collect();
+        for &i in &dirty {
+            self.records[i] = cell_proof(terrain, i);
+            if let (Some(sent), Some(cell)) = (self.sent_revisions.get_mut(i), grid.cell(i)) {
+                *sent = cell.revision();
+            }
+        }
+        let outside = GpuCellProof::new(terrain.lipschitz(), 0.0, None);
+        let outside_changed = self.records[cells] != outside;
+        self.records[cells] = outside;
+        let first = dirty.iter().copied().min();
+        let last = dirty.iter().copied().max();
+        if let (Some(a), Some(b)) = (first, last) {
+            let bytes = bytemuck::cast_slice(&self.records[a..=b]);
+            queue.write_buffer(&self.buffer, a as u64 * 16, bytes);
+        }
+        if outside_changed || reset {
+            let bytes = bytemuck::bytes_of(&self.records[cells]);
+            queue.write_buffer(&self.buffer, cells as u64 * 16, bytes);
+        }
+        Ok(reset)
+    }
+}
+
+fn proof_buffer(device: &wgpu::Device, records: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("craterfield refine proofs"),
+        size: records.max(1) * 16,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// What the proof reads about cell `i`.
+fn cell_proof<F: Sdf>(terrain: &Terrain<F>, i: usize) -> GpuCellProof {
+    match terrain.cell_bounds(i) {
+        Some(b) => GpuCellProof::new(b.lipschitz, b.error, terrain.cell_material(i)),
+        None => GpuCellProof::new(f32::INFINITY, f32::INFINITY, None),
+    }
+}
+
+/// Pixel blocks per axis of an image.
+pub(crate) fn block_dims(width: u32, height: u32) -> (u32, u32) {
+    let b = BLOCK as u32;
+    (width.div_ceil(b), height.div_ceil(b))
+}
+
+/// The per-frame buffers of one image size.
+pub(crate) struct RefineTargets {
+    pub(crate) blocks: wgpu::Buffer,
+    pub(crate) corners: wgpu::Buffer,
+    pub(crate) work: wgpu::Buffer,
+    pub(crate) list: wgpu::Buffer,
+    work_start: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    /// Blocks per axis.
+    pub(crate) dims: (u32, u32),
+}
+
+impl RefineTargets {
+    /// Buffers for an image of `width x height` pixels.
+    pub(crate) fn new(device: &wgpu::Device, width: u32, height: u32) -> Result<Self, GpuError> {
+        let dims = block_dims(width, height);
+        let blocks = u64::from(dims.0) * u64::from(dims.1);
+        let state_bytes = std::mem::size_of::<GpuBlockState>() as u64;
+        let corners = u64::from(dims.0 + 1) * u64::from(dims.1 + 1);
+        let limit = device.limits().max_storage_buffer_binding_size;
+        for (what, bytes) in [
+            ("refine block states", blocks * state_bytes),
+            ("refine corner samples", corners * 16),
+        ] {
+            if bytes > limit {
+                return Err(GpuError::LimitsTooLow {
+                    what,
+                    needed: bytes,
+                    limit,
+                });
+            }
+        }
+        let storage = |label: &str, bytes: u64, extra: wgpu::BufferUsages| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes.max(16),
+                usage: wgpu::BufferUsages::STORAGE | extra,
+                mapped_at_creation: false,
+            })
+        };
+        let none = wgpu::BufferUsages::empty();
+        let work_usage = wgpu::BufferUsages::INDIRECT
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC;
+        Ok(RefineTargets {
+            blocks: storage("craterfield refine blocks", blocks * state_bytes, none),
+            corners: storage("craterfield refine corners", corners * 16, none),
+            work: storage("craterfield refine work", 48, work_usage),
+            list: storage("craterfield refine exact list", blocks * 4, none),
+            work_start: buffer_with(
+                device,
+                "craterfield refine work start",
+                bytemuck::bytes_of(&GpuWork::start()),
+                wgpu::BufferUsages::COPY_SRC,
+            ),
+            readback: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("craterfield refine counters readback"),
+                size: 48,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            dims,
+        })
+    }
+
+    /// Whether these buffers serve an image of `width x height`.
+    pub(crate) fn fits(&self, width: u32, height: u32) -> bool {
+        self.dims == block_dims(width, height)
+    }
+
+    /// Resets the exact list and the counters, then records the three dispatches.
+    pub(crate) fn encode(&self, encoder: &mut wgpu::CommandEncoder, passes: ClassifyPasses<'_>) {
+        encoder.copy_buffer_to_buffer(&self.work_start, 0, &self.work, 0, 48);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("craterfield refine classify"),
+            timestamp_writes: None,
+        });
+        let (bx, by) = self.dims;
+        let groups = |n: u32| n.div_ceil(WORKGROUP);
+        pass.set_pipeline(passes.classify);
+        pass.set_bind_group(0, passes.classify_bind, &[]);
+        pass.dispatch_workgroups(groups(bx), groups(by), 1);
+        pass.set_pipeline(passes.corners);
+        pass.set_bind_group(0, passes.field_bind, &[]);
+        pass.set_bind_group(1, passes.corners_bind, &[]);
+        pass.dispatch_workgroups(groups(bx + 1), groups(by + 1), 1);
+        pass.set_pipeline(passes.blocks);
+        pass.set_bind_group(0, passes.classify_bind, &[]);
+        pass.dispatch_workgroups(groups(bx), groups(by), 1);
+    }
+
+    /// Reads the counters of the last submitted frame back (waits for the device).
+    pub(crate) fn stats(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        texels: u64,
+        pixels: u64,
+    ) -> Result<RefineStats, GpuError> {
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("craterfield refine counters"),
+        });
+        encoder.copy_buffer_to_buffer(&self.work, 0, &self.readback, 0, 48);
+        queue.submit([encoder.finish()]);
+        let work: GpuWork = map_read(device, &self.readback, |bytes| {
+            bytemuck::pod_read_unaligned(&bytes[..48])
+        })?;
+        Ok(stats_of(&work, texels, pixels))
+    }
+}
+
+/// The pipelines and bind groups [`RefineTargets::encode`] records.
+pub(crate) struct ClassifyPasses<'a> {
+    pub(crate) classify: &'a wgpu::ComputePipeline,
+    pub(crate) corners: &'a wgpu::ComputePipeline,
+    pub(crate) blocks: &'a wgpu::ComputePipeline,
+    pub(crate) classify_bind: &'a wgpu::BindGroup,
+    pub(crate) field_bind: &'a wgpu::BindGroup,
+    pub(crate) corners_bind: &'a wgpu::BindGroup,
+}
+
+/// `COUNT_*` slots of `shaders/refine_common.wgsl`.
+mod slot {
+    pub(super) const BLOCKS: usize = 0;
+    pub(super) const SKY: usize = 1;
+    pub(super) const SOLID: usize = 2;
+    pub(super) const EXACT_BLOCKS: usize = 3;
+    pub(super) const EXACT_PIXELS: usize = 4;
+    pub(super) const CORNERS: usize = 5;
+}
+
+fn stats_of(work: &GpuWork, texels: u64, pixels: u64) -> RefineStats {
+    let c = |i: usize| u64::from(work.counters[i]);
+    RefineStats {
+        blocks: c(slot::BLOCKS),
+        sky_blocks: c(slot::SKY),
+        solid_blocks: c(slot::SOLID),
+        refined_blocks: c(slot::EXACT_BLOCKS),
+        pixels,
+        refined_pixels: c(slot::EXACT_PIXELS),
+        exact_evaluations: texels + c(slot::CORNERS) + c(slot::EXACT_PIXELS),
+    }
+}
