@@ -3,7 +3,7 @@
 // Level 0 (`cs_classify`) bounds each block from the pass-1 texels around it; level 1
 // (`cs_blocks`) bounds the blocks level 0 left open from the exact samples at their four
 // corners (written by `cs_corners`, refine_corners.wgsl), and appends the blocks it cannot
-// prove to the list the exact pass draws.
+// prove to the list the exact pass evaluates; `cs_args` sizes that pass's dispatch.
 
 @group(0) @binding(1) var texels: texture_2d<f32>;
 @group(0) @binding(3) var<storage, read_write> blocks: array<BlockState>;
@@ -122,10 +122,22 @@ fn cs_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
     blocks[index] = state;
     count_final(state.kind);
     if state.kind == CLASS_EXACT {
-        let slot = atomicAdd(&work.instance_count, 1u);
+        let slot = atomicAdd(&work.exact_blocks, 1u);
         exact_list[slot] = index;
+        // The draw finds the block's exact colours by its list slot.
+        blocks[index].material = slot;
         atomicAdd(&work.counters[COUNT_EXACT_BLOCKS], 1u);
         let pixels = (px.z - px.x + 1u) * (px.w - px.y + 1u);
         atomicAdd(&work.counters[COUNT_EXACT_PIXELS], pixels);
     }
+}
+
+// The exact pass's workgroup counts, as a 2D grid when one dimension cannot hold them.
+@compute @workgroup_size(1)
+fn cs_args() {
+    let groups = (atomicLoad(&work.exact_blocks) + EXACT_BLOCKS_PER_GROUP - 1u)
+        / EXACT_BLOCKS_PER_GROUP;
+    let x = min(groups, MAX_GROUPS_PER_DIM);
+    let y = select(1u, (groups + x - 1u) / x, x > 0u);
+    work.dispatch = array<u32, 3>(x, y, 1u);
 }

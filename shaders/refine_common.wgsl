@@ -34,15 +34,18 @@ struct BlockState {
     hi: f32,
 }
 
-// The indirect draw of the exact blocks (vertex count, instance count = exact blocks,
-// first vertex, first instance), then the frame's counters.
+// The indirect dispatch of the exact pass (workgroups x, y, z, written by `cs_args`), the
+// number of blocks in the exact list, then the frame's counters.
 struct Work {
-    vertex_count: u32,
-    instance_count: atomic<u32>,
-    first_vertex: u32,
-    first_instance: u32,
+    dispatch: array<u32, 3>,
+    exact_blocks: atomic<u32>,
     counters: array<atomic<u32>, 8>,
 }
+
+// Exact blocks per workgroup of the exact pass (BLOCK * BLOCK pixels each).
+const EXACT_BLOCKS_PER_GROUP: u32 = 4u;
+// Most workgroups per dispatch dimension (the WebGPU default limit).
+const MAX_GROUPS_PER_DIM: u32 = 65535u;
 
 fn block_dims() -> vec2<u32> {
     return (frame.image + vec2<u32>(BLOCK - 1u)) / BLOCK;

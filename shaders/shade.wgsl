@@ -44,9 +44,19 @@ fn shade_pixel(d_px: f32, n: vec2<f32>, base: vec3<f32>, y: f32) -> vec4<f32> {
     }
     let outline = clamp(d_px + frame.outline_px + 0.5, 0.0, 1.0) * coverage;
     color = mix(color, base * 0.35, outline);
-    let out = clamp(mix(sky, color, coverage), vec3<f32>(0.0), vec3<f32>(255.0)) / 255.0;
+    return finish_color(mix(sky, color, coverage));
+}
+
+// A 0..255 colour as the render target stores it.
+fn finish_color(c: vec3<f32>) -> vec4<f32> {
+    let out = clamp(c, vec3<f32>(0.0), vec3<f32>(255.0)) / 255.0;
     if frame.srgb_target != 0u {
         return vec4<f32>(srgb_to_linear(out), 1.0);
     }
     return vec4<f32>(out, 1.0);
+}
+
+// What shade_pixel gives wherever coverage is 0 (mix(sky, c, 0) is sky).
+fn sky_pixel(y: f32) -> vec4<f32> {
+    return finish_color(sky_color(y));
 }

@@ -504,23 +504,42 @@ fn draws_into_the_callers_render_pass_and_srgb_targets(ctx: &GpuContext) -> Test
     let level = Level::default_level();
     let terrain = cratered(&level, 100);
     let pal = palette(&level);
-    let cam = camera(Vec2::new(1250.0, 700.0), 1.0, 200, 120);
-    let options = RenderOptions::default();
+    let refine = RenderOptions {
+        reconstruction: Reconstruction::Refine,
+        ..RenderOptions::default()
+    };
+    for (options, center) in [
+        (RenderOptions::default(), Vec2::new(1250.0, 700.0)),
+        (refine, Vec2::new(1250.0, 380.0)),
+    ] {
+        own_pass_and_srgb_match(ctx, &terrain, &pal, &camera(center, 1.0, 200, 120), options)?;
+    }
+    Ok(())
+}
+
+fn own_pass_and_srgb_match(
+    ctx: &GpuContext,
+    terrain: &Terrain<Graph>,
+    pal: &[[u8; 3]],
+    cam: &Camera,
+    options: RenderOptions,
+) -> TestResult {
+    let mode = options.reconstruction.name();
     let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())
         .map_err(|e| e.to_string())?;
-    r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
-    let own = draw_in_own_pass(ctx, &r, &cam, READBACK_FORMAT)?;
+    r.prepare(terrain, pal, cam).map_err(|e| e.to_string())?;
+    let own = draw_in_own_pass(ctx, &r, cam, READBACK_FORMAT)?;
     let reference =
         render_to_image(&r, cam.width, cam.height, Pipeline::Reduced).map_err(|e| e.to_string())?;
     if own != reference.as_raw().as_slice() {
-        return Err("drawing into the caller's pass differs from render()".into());
+        return Err(format!("{mode}: drawing into the caller's pass differs from render()").into());
     }
     // An sRGB target stores the same bytes: the shader hands it linear values.
     let srgb = wgpu::TextureFormat::Rgba8UnormSrgb;
     let mut s =
         TerrainRenderer::new(&ctx.device, &ctx.queue, srgb, options).map_err(|e| e.to_string())?;
-    s.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
-    let bytes = draw_in_own_pass(ctx, &s, &cam, srgb)?;
+    s.prepare(terrain, pal, cam).map_err(|e| e.to_string())?;
+    let bytes = draw_in_own_pass(ctx, &s, cam, srgb)?;
     let worst = bytes
         .iter()
         .zip(&own)
@@ -528,7 +547,10 @@ fn draws_into_the_callers_render_pass_and_srgb_targets(ctx: &GpuContext) -> Test
         .max()
         .unwrap_or(0);
     if worst > 1 {
-        return Err(format!("an sRGB target differs from the linear one by {worst} levels").into());
+        return Err(format!(
+            "{mode}: an sRGB target differs from the linear one by {worst} levels"
+        )
+        .into());
     }
     Ok(())
 }

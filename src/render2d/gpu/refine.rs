@@ -6,9 +6,10 @@
 //! `4 x 4` pixel block bounded from the texels around it), `cs_corners` (exact samples at the
 //! corners of the blocks level 0 left open) and `cs_blocks` (level 1: those blocks bounded
 //! from their corner samples; the ones still open are appended to a list with an atomic
-//! counter that is also the instance count of an indirect draw). Pass 3 draws the proven
-//! blocks full screen (`fs_refine`), then the listed blocks as quads whose fragment stage is
-//! the direct evaluation, so every pixel that no proof covers is the exact render's.
+//! counter); `cs_args` turns the count into the workgroups of an indirect dispatch of
+//! `cs_exact`, which evaluates and shades every pixel of the listed blocks as the direct pass
+//! does and stores the colours by list slot. Pass 3 (`fs_refine`) draws the proven blocks and
+//! copies the exact ones, so every pixel that no proof covers is the exact render's.
 
 use super::GpuError;
 use super::grid_mirror::buffer_with;
@@ -19,7 +20,7 @@ use crate::gpu::map_read;
 use crate::render2d::twin::{REFINE_BLOCK as BLOCK, RefineStats};
 
 /// Storage buffers one stage of the refine passes binds at most (`cs_corners`: the four of
-/// the field, blocks, corners and work).
+/// the field, blocks, corners and work; `cs_exact`: the field's, list, work and colours).
 pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 7;
 
 /// Workgroup side of the refine compute entry points (`@workgroup_size(8, 8)`).
@@ -130,6 +131,8 @@ pub(crate) struct RefineTargets {
     pub(crate) corners: wgpu::Buffer,
     pub(crate) work: wgpu::Buffer,
     pub(crate) list: wgpu::Buffer,
+    /// The exact pass's colours, two words per pixel of each listed block.
+    pub(crate) colors: wgpu::Buffer,
     work_start: wgpu::Buffer,
     readback: wgpu::Buffer,
     /// Blocks per axis.
@@ -144,9 +147,11 @@ impl RefineTargets {
         let state_bytes = std::mem::size_of::<GpuBlockState>() as u64;
         let corners = u64::from(dims.0 + 1) * u64::from(dims.1 + 1);
         let limit = device.limits().max_storage_buffer_binding_size;
+        let pixels_per_block = (BLOCK * BLOCK) as u64;
         for (what, bytes) in [
             ("refine block states", blocks * state_bytes),
             ("refine corner samples", corners * 16),
+            ("refine exact colours", blocks * pixels_per_block * 8),
         ] {
             if bytes > limit {
                 return Err(GpuError::LimitsTooLow {
@@ -173,6 +178,11 @@ impl RefineTargets {
             corners: storage("craterfield refine corners", corners * 16, none),
             work: storage("craterfield refine work", 48, work_usage),
             list: storage("craterfield refine exact list", blocks * 4, none),
+            colors: storage(
+                "craterfield refine exact colours",
+                blocks * pixels_per_block * 8,
+                none,
+            ),
             work_start: buffer_with(
                 device,
                 "craterfield refine work start",
@@ -213,6 +223,12 @@ impl RefineTargets {
         pass.set_pipeline(passes.blocks);
         pass.set_bind_group(0, passes.classify_bind, &[]);
         pass.dispatch_workgroups(groups(bx), groups(by), 1);
+        pass.set_pipeline(passes.args);
+        pass.dispatch_workgroups(1, 1, 1);
+        pass.set_pipeline(passes.exact);
+        pass.set_bind_group(0, passes.field_bind, &[]);
+        pass.set_bind_group(1, passes.exact_bind, &[]);
+        pass.dispatch_workgroups_indirect(&self.work, 0);
     }
 
     /// Reads the counters of the last submitted frame back (waits for the device).
@@ -240,9 +256,12 @@ pub(crate) struct ClassifyPasses<'a> {
     pub(crate) classify: &'a wgpu::ComputePipeline,
     pub(crate) corners: &'a wgpu::ComputePipeline,
     pub(crate) blocks: &'a wgpu::ComputePipeline,
+    pub(crate) args: &'a wgpu::ComputePipeline,
+    pub(crate) exact: &'a wgpu::ComputePipeline,
     pub(crate) classify_bind: &'a wgpu::BindGroup,
     pub(crate) field_bind: &'a wgpu::BindGroup,
     pub(crate) corners_bind: &'a wgpu::BindGroup,
+    pub(crate) exact_bind: &'a wgpu::BindGroup,
 }
 
 /// `COUNT_*` slots of `shaders/refine_common.wgsl`.

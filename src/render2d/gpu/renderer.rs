@@ -51,13 +51,14 @@ struct FieldPipelines {
 /// The refine passes that evaluate the field: corner samples and the exact pass.
 struct RefineFieldPipelines {
     corners: wgpu::ComputePipeline,
-    exact: wgpu::RenderPipeline,
+    exact: wgpu::ComputePipeline,
 }
 
 /// The refine passes that do not depend on the level.
 struct RefinePipelines {
     classify: wgpu::ComputePipeline,
     blocks: wgpu::ComputePipeline,
+    args: wgpu::ComputePipeline,
     draw: wgpu::RenderPipeline,
 }
 
@@ -77,7 +78,7 @@ struct RefineLayouts {
     /// Group 0 of `fs_refine`.
     draw: wgpu::BindGroupLayout,
     /// Group 1 of the exact pass (group 0 is the field's).
-    list: wgpu::BindGroupLayout,
+    exact: wgpu::BindGroupLayout,
 }
 
 struct LowResTargets {
@@ -98,7 +99,7 @@ struct RefineBinds {
     classify: wgpu::BindGroup,
     corners: wgpu::BindGroup,
     draw: wgpu::BindGroup,
-    list: wgpu::BindGroup,
+    exact: wgpu::BindGroup,
 }
 
 struct Prepared {
@@ -261,13 +262,18 @@ impl RefineLayouts {
                     buffer_entry(2, fragment, true),
                     buffer_entry(3, fragment, true),
                     buffer_entry(4, fragment, true),
+                    buffer_entry(5, fragment, true),
                     uniform_entry(7),
                 ],
             ),
-            list: layout(
+            exact: layout(
                 device,
-                "craterfield refine exact list",
-                &[buffer_entry(0, wgpu::ShaderStages::VERTEX, true)],
+                "craterfield refine exact",
+                &[
+                    buffer_entry(0, compute, true),
+                    buffer_entry(1, compute, true),
+                    buffer_entry(2, compute, false),
+                ],
             ),
         }
     }
@@ -612,7 +618,7 @@ impl TerrainRenderer {
                 format,
             )?;
             let refine = if refine {
-                Some(refine_field_pipelines(device, layouts, &base, format)?)
+                Some(refine_field_pipelines(device, layouts, &base)?)
             } else {
                 None
             };
@@ -877,13 +883,14 @@ impl TerrainRenderer {
                     buffer(2, proofs),
                     buffer(3, &t.blocks),
                     buffer(4, &t.corners),
+                    buffer(5, &t.colors),
                     buffer(7, &self.palette),
                 ],
             ),
-            list: group(
-                "craterfield refine exact list",
-                &l.list,
-                &[buffer(0, &t.list)],
+            exact: group(
+                "craterfield refine exact",
+                &l.exact,
+                &[buffer(0, &t.list), buffer(1, &t.work), buffer(2, &t.colors)],
             ),
         }
     }
@@ -957,33 +964,26 @@ impl TerrainRenderer {
                 classify: &shared.classify,
                 corners: &own.corners,
                 blocks: &shared.blocks,
+                args: &shared.args,
+                exact: &own.exact,
                 classify_bind: &binds.classify,
                 field_bind: &bind.field,
                 corners_bind: &binds.corners,
+                exact_bind: &binds.exact,
             },
         );
         Ok(())
     }
 
-    /// Pass 3 of mode refine: the proven blocks, then the exact blocks drawn over them.
-    fn draw_refine(&self, pass: &mut wgpu::RenderPass<'_>, key: u64) -> Result<(), GpuError> {
+    /// Pass 3 of mode refine: the proven blocks drawn, the exact ones copied.
+    fn draw_refine(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), GpuError> {
         let bind = self.bind.as_ref().ok_or(GpuError::NotPrepared)?;
-        let field = self.field_pipelines.peek(key);
-        let (Some(shared), Some(own), Some(binds), Some(targets)) = (
-            &self.refine_pipelines,
-            field.and_then(|f| f.refine.as_ref()),
-            &bind.refine,
-            &self.refine_targets,
-        ) else {
+        let (Some(shared), Some(binds)) = (&self.refine_pipelines, &bind.refine) else {
             return Err(GpuError::NotPrepared);
         };
         pass.set_pipeline(&shared.draw);
         pass.set_bind_group(0, &binds.draw, &[]);
         pass.draw(0..3, 0..1);
-        pass.set_pipeline(&own.exact);
-        pass.set_bind_group(0, &bind.field, &[]);
-        pass.set_bind_group(1, &binds.list, &[]);
-        pass.draw_indirect(&targets.work, 0);
         Ok(())
     }
 
@@ -994,7 +994,7 @@ impl TerrainRenderer {
         let c = &prepared.camera;
         pass.set_viewport(0.0, 0.0, c.width as f32, c.height as f32, 0.0, 1.0);
         if self.options.reconstruction == Reconstruction::Refine {
-            return self.draw_refine(pass, prepared.key);
+            return self.draw_refine(pass);
         }
         pass.set_pipeline(&self.upsample[upsample_index(&self.options)]);
         pass.set_bind_group(0, &bind.upsample, &[]);
@@ -1110,6 +1110,13 @@ fn refine_pipelines(
             "cs_blocks",
             &[&l.classify],
         )?,
+        args: compute_pipeline(
+            device,
+            "craterfield refine classify",
+            &classify_src,
+            "cs_args",
+            &[&l.classify],
+        )?,
         draw: fullscreen_pipeline(
             device,
             "craterfield refine draw",
@@ -1126,7 +1133,6 @@ fn refine_field_pipelines(
     device: &wgpu::Device,
     layouts: &Layouts,
     base: &str,
-    format: wgpu::TextureFormat,
 ) -> Result<RefineFieldPipelines, GpuError> {
     let l = &layouts.refine;
     Ok(RefineFieldPipelines {
@@ -1137,13 +1143,12 @@ fn refine_field_pipelines(
             "cs_corners",
             &[&layouts.field, &l.corners],
         )?,
-        exact: render_pipeline(
+        exact: compute_pipeline(
             device,
             "craterfield refine exact",
             &shaders::refine_exact_module(base),
-            ("vs_exact_block", "fs_direct"),
-            &[&layouts.field, &l.list],
-            format,
+            "cs_exact",
+            &[&layouts.field, &l.exact],
         )?,
     })
 }

@@ -50,7 +50,7 @@ pub const REFINE_DRAW: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/shaders/refine_draw.wgsl"
 ));
-/// Mode refine: the exact pass's block quads.
+/// Mode refine: the exact pass over the listed blocks.
 pub const REFINE_EXACT: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/shaders/refine_exact.wgsl"
@@ -80,7 +80,7 @@ pub fn upsample_module() -> String {
     join(&[COMMON, SHADE, UPSAMPLE])
 }
 
-/// Mode refine, classification (`cs_classify`, `cs_blocks`).
+/// Mode refine, classification (`cs_classify`, `cs_blocks`, `cs_args`).
 pub fn refine_classify_module() -> String {
     join(&[COMMON, REFINE_COMMON, REFINE_PROOF, REFINE_CLASSIFY])
 }
@@ -95,14 +95,13 @@ pub fn refine_draw_module() -> String {
     join(&[COMMON, SHADE, REFINE_COMMON, REFINE_PROOF, REFINE_DRAW])
 }
 
-/// Mode refine, the exact pass over the emitted base field (`vs_exact_block`, `fs_direct`).
+/// Mode refine, the exact pass over the emitted base field (`cs_exact`).
 pub fn refine_exact_module(base_field: &str) -> String {
     join(&[
         COMMON,
         base_field,
         FIELD,
         SHADE,
-        DIRECT,
         REFINE_COMMON,
         REFINE_EXACT,
     ])

@@ -266,13 +266,15 @@ pub(crate) struct GpuBlockState {
 
 const _: () = assert!(std::mem::size_of::<GpuBlockState>() == 16);
 
-/// The exact pass's indirect draw and the frame's refine counters; `Work` in
-/// `shaders/refine_common.wgsl`.
+/// The exact pass's indirect dispatch, its block count and the frame's refine counters;
+/// `Work` in `shaders/refine_common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
 pub(crate) struct GpuWork {
-    /// Indirect draw arguments: vertex count (6), instances, first vertex, first instance.
-    pub draw: [u32; 4],
+    /// Workgroups of the exact pass (written on the GPU by `cs_args`).
+    pub dispatch: [u32; 3],
+    /// Blocks in the exact list.
+    pub exact_blocks: u32,
     /// `COUNT_*` slots of `refine_common.wgsl`.
     pub counters: [u32; 8],
 }
@@ -280,11 +282,8 @@ pub(crate) struct GpuWork {
 const _: () = assert!(std::mem::size_of::<GpuWork>() == 48);
 
 impl GpuWork {
-    /// What the frame starts from: one quad per exact block, none yet, counters at zero.
+    /// What the frame starts from: nothing listed, counters at zero.
     pub(crate) fn start() -> GpuWork {
-        GpuWork {
-            draw: [6, 0, 0, 0],
-            counters: [0; 8],
-        }
+        GpuWork::default()
     }
 }
