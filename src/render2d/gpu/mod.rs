@@ -10,7 +10,8 @@
 //!
 //! Module map: `uniforms` (plain data shared with WGSL), `grid_mirror` (incremental
 //! uploads of the explosion grid), [`shaders`] (WGSL assembly), `renderer` (pipelines and
-//! passes), `readback` (a frame rendered to an image). The device plumbing it shares with
+//! passes), `refine` (mode refine's proof mirror, buffers and compute passes), `readback`
+//! (a frame rendered to an image). The device plumbing it shares with
 //! the 3D raymarcher (headless context, offscreen targets, timestamps, the pipeline cache and
 //! [`GpuError`]) is [`crate::gpu`].
 
