@@ -2,7 +2,7 @@
 //! per-cell proof data mirrored from the terrain, the block, corner, work and exact-list
 //! buffers of one frame size, and the passes that use them.
 //!
-//! After pass 1, one compute pass runs three dispatches: `cs_classify` (level 0: every
+//! After pass 1, one compute pass runs five dispatches: `cs_classify` (level 0: every
 //! `4 x 4` pixel block bounded from the texels around it), `cs_corners` (exact samples at the
 //! corners of the blocks level 0 left open) and `cs_blocks` (level 1: those blocks bounded
 //! from their corner samples; the ones still open are appended to a list with an atomic
