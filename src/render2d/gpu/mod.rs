@@ -9,15 +9,18 @@
 //! caller's own render pass after [`TerrainRenderer::encode_prepasses`]). Errors are values.
 //!
 //! Module map: `uniforms` (plain data shared with WGSL), `grid_mirror` (incremental
-//! uploads of the explosion grid), [`shaders`] (WGSL assembly), `renderer` (pipelines and
-//! passes), `refine` (mode refine's proof mirror, buffers and compute passes), `readback`
-//! (a frame rendered to an image). The device plumbing it shares with
+//! uploads of the explosion grid), [`shaders`] (WGSL assembly), `pipelines` (layout entries
+//! and pipeline constructors), `renderer` (pipelines and passes), `refine` (mode refine's
+//! proof mirror, buffers and dispatches), `refine_passes` (its layouts, pipelines and bind
+//! groups), `readback` (a frame rendered to an image). The device plumbing it shares with
 //! the 3D raymarcher (headless context, offscreen targets, timestamps, the pipeline cache and
 //! [`GpuError`]) is [`crate::gpu`].
 
 pub(crate) mod grid_mirror;
+pub(crate) mod pipelines;
 pub(crate) mod readback;
 pub(crate) mod refine;
+pub(crate) mod refine_passes;
 pub(crate) mod renderer;
 pub mod shaders;
 pub(crate) mod uniforms;

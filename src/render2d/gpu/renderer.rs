@@ -14,7 +14,11 @@ use glam::Vec2;
 
 use super::GpuError;
 use super::grid_mirror::{GridMirror, UploadStats, buffer_with};
+use super::pipelines::{fullscreen_pipeline, layout, storage_entry, texture_entry, uniform_entry};
 use super::refine::{ClassifyPasses, ProofMirror, RefineTargets, STORAGE_BUFFERS_NEEDED};
+use super::refine_passes::{
+    RefineBinds, RefineFieldPipelines, RefineLayouts, RefinePipelines, RefineResources,
+};
 use super::shaders;
 use super::uniforms::{FrameUniform, MAX_PALETTE, PaletteUniform};
 use crate::render2d::twin::RefineStats;
@@ -48,37 +52,11 @@ struct FieldPipelines {
     refine: Option<RefineFieldPipelines>,
 }
 
-/// The refine passes that evaluate the field: corner samples and the exact pass.
-struct RefineFieldPipelines {
-    corners: wgpu::ComputePipeline,
-    exact: wgpu::ComputePipeline,
-}
-
-/// The refine passes that do not depend on the level.
-struct RefinePipelines {
-    classify: wgpu::ComputePipeline,
-    blocks: wgpu::ComputePipeline,
-    args: wgpu::ComputePipeline,
-    draw: wgpu::RenderPipeline,
-}
-
 struct Layouts {
     field: wgpu::BindGroupLayout,
     reconstruct: wgpu::BindGroupLayout,
     upsample: wgpu::BindGroupLayout,
     refine: RefineLayouts,
-}
-
-/// Bind group layouts of the refine passes (bindings as in `shaders/refine_*.wgsl`).
-struct RefineLayouts {
-    /// Group 0 of `cs_classify` and `cs_blocks`.
-    classify: wgpu::BindGroupLayout,
-    /// Group 1 of `cs_corners` (group 0 is the field's).
-    corners: wgpu::BindGroupLayout,
-    /// Group 0 of `fs_refine`.
-    draw: wgpu::BindGroupLayout,
-    /// Group 1 of the exact pass (group 0 is the field's).
-    exact: wgpu::BindGroupLayout,
 }
 
 struct LowResTargets {
@@ -93,13 +71,6 @@ struct BindGroups {
     reconstruct: wgpu::BindGroup,
     upsample: wgpu::BindGroup,
     refine: Option<RefineBinds>,
-}
-
-struct RefineBinds {
-    classify: wgpu::BindGroup,
-    corners: wgpu::BindGroup,
-    draw: wgpu::BindGroup,
-    exact: wgpu::BindGroup,
 }
 
 struct Prepared {
@@ -132,68 +103,6 @@ pub struct TerrainRenderer {
     refine_targets: Option<RefineTargets>,
 }
 
-fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::all(),
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    buffer_entry(
-        binding,
-        wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
-        true,
-    )
-}
-
-fn buffer_entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    read_only: bool,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: true },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
-}
-
-fn layout(
-    device: &wgpu::Device,
-    label: &str,
-    entries: &[wgpu::BindGroupLayoutEntry],
-) -> wgpu::BindGroupLayout {
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries,
-    })
-}
-
 impl Layouts {
     fn new(device: &wgpu::Device) -> Layouts {
         let mut field = vec![uniform_entry(0)];
@@ -224,170 +133,6 @@ impl Layouts {
             ),
             refine: RefineLayouts::new(device),
         }
-    }
-}
-
-impl RefineLayouts {
-    fn new(device: &wgpu::Device) -> RefineLayouts {
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        RefineLayouts {
-            classify: layout(
-                device,
-                "craterfield refine classify",
-                &[
-                    uniform_entry(0),
-                    texture_entry(1),
-                    buffer_entry(2, compute, true),
-                    buffer_entry(3, compute, false),
-                    buffer_entry(4, compute, true),
-                    buffer_entry(5, compute, false),
-                    buffer_entry(6, compute, false),
-                ],
-            ),
-            corners: layout(
-                device,
-                "craterfield refine corners",
-                &[
-                    buffer_entry(0, compute, true),
-                    buffer_entry(1, compute, false),
-                    buffer_entry(2, compute, false),
-                ],
-            ),
-            draw: layout(
-                device,
-                "craterfield refine draw",
-                &[
-                    uniform_entry(0),
-                    buffer_entry(2, fragment, true),
-                    buffer_entry(3, fragment, true),
-                    buffer_entry(4, fragment, true),
-                    buffer_entry(5, fragment, true),
-                    uniform_entry(7),
-                ],
-            ),
-            exact: layout(
-                device,
-                "craterfield refine exact",
-                &[
-                    buffer_entry(0, compute, true),
-                    buffer_entry(1, compute, true),
-                    buffer_entry(2, compute, false),
-                ],
-            ),
-        }
-    }
-}
-
-/// A compute pipeline over `bind_layouts`, validation errors as values.
-fn compute_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    entry: &str,
-    bind_layouts: &[&wgpu::BindGroupLayout],
-) -> Result<wgpu::ComputePipeline, GpuError> {
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
-        bind_layouts.iter().map(|l| Some(*l)).collect();
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &layouts,
-        immediate_size: 0,
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pipeline_layout),
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    match pollster::block_on(scope.pop()) {
-        Some(e) => Err(GpuError::Validation {
-            what: format!("{label} ({entry})"),
-            message: e.to_string(),
-        }),
-        None => Ok(pipeline),
-    }
-}
-
-/// Creates a shader module and a full-screen pipeline, turning validation errors into values.
-fn fullscreen_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    entry: &str,
-    bind_layout: &wgpu::BindGroupLayout,
-    format: wgpu::TextureFormat,
-) -> Result<wgpu::RenderPipeline, GpuError> {
-    render_pipeline(
-        device,
-        label,
-        source,
-        ("vs_fullscreen", entry),
-        &[bind_layout],
-        format,
-    )
-}
-
-/// A render pipeline with vertex and fragment entry points `entries` over `bind_layouts`.
-fn render_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    entries: (&str, &str),
-    bind_layouts: &[&wgpu::BindGroupLayout],
-    format: wgpu::TextureFormat,
-) -> Result<wgpu::RenderPipeline, GpuError> {
-    let (vertex_entry, entry) = entries;
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
-        bind_layouts.iter().map(|l| Some(*l)).collect();
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &layouts,
-        immediate_size: 0,
-    });
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some(vertex_entry),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: None,
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
-    match pollster::block_on(scope.pop()) {
-        Some(e) => Err(GpuError::Validation {
-            what: format!("{label} ({entry})"),
-            message: e.to_string(),
-        }),
-        None => Ok(pipeline),
     }
 }
 
@@ -618,7 +363,12 @@ impl TerrainRenderer {
                 format,
             )?;
             let refine = if refine {
-                Some(refine_field_pipelines(device, layouts, &base)?)
+                Some(RefineFieldPipelines::new(
+                    device,
+                    &layouts.field,
+                    &layouts.refine,
+                    &base,
+                )?)
             } else {
                 None
             };
@@ -654,9 +404,9 @@ impl TerrainRenderer {
     /// the per-frame buffers for the camera.
     fn ensure_refine(&mut self, terrain: &Terrain<Graph>, camera: &Camera) -> Result<(), GpuError> {
         if self.refine_pipelines.is_none() {
-            self.refine_pipelines = Some(refine_pipelines(
+            self.refine_pipelines = Some(RefinePipelines::new(
                 &self.device,
-                &self.layouts,
+                &self.layouts.refine,
                 self.target_format,
             )?);
         }
@@ -826,7 +576,17 @@ impl TerrainRenderer {
         });
         let refine = match (&self.refine_targets, &self.refine_pipelines) {
             (Some(targets), Some(_)) if self.options.reconstruction == Reconstruction::Refine => {
-                Some(self.refine_binds(targets, &lowres.texels))
+                Some(RefineBinds::new(
+                    &self.device,
+                    &self.layouts.refine,
+                    targets,
+                    RefineResources {
+                        frame: &self.frame,
+                        palette: &self.palette,
+                        proofs: self.proofs.buffer(),
+                        texels: &lowres.texels,
+                    },
+                ))
             }
             _ => None,
         };
@@ -836,63 +596,6 @@ impl TerrainRenderer {
             upsample,
             refine,
         })
-    }
-
-    fn refine_binds(&self, t: &RefineTargets, texels: &wgpu::TextureView) -> RefineBinds {
-        let group =
-            |label: &str, layout: &wgpu::BindGroupLayout, entries: &[wgpu::BindGroupEntry]| {
-                self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some(label),
-                    layout,
-                    entries,
-                })
-            };
-        let l = &self.layouts.refine;
-        let proofs = self.proofs.buffer();
-        RefineBinds {
-            classify: group(
-                "craterfield refine classify",
-                &l.classify,
-                &[
-                    buffer(0, &self.frame),
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(texels),
-                    },
-                    buffer(2, proofs),
-                    buffer(3, &t.blocks),
-                    buffer(4, &t.corners),
-                    buffer(5, &t.work),
-                    buffer(6, &t.list),
-                ],
-            ),
-            corners: group(
-                "craterfield refine corners",
-                &l.corners,
-                &[
-                    buffer(0, &t.blocks),
-                    buffer(1, &t.corners),
-                    buffer(2, &t.work),
-                ],
-            ),
-            draw: group(
-                "craterfield refine draw",
-                &l.draw,
-                &[
-                    buffer(0, &self.frame),
-                    buffer(2, proofs),
-                    buffer(3, &t.blocks),
-                    buffer(4, &t.corners),
-                    buffer(5, &t.colors),
-                    buffer(7, &self.palette),
-                ],
-            ),
-            exact: group(
-                "craterfield refine exact",
-                &l.exact,
-                &[buffer(0, &t.list), buffer(1, &t.work), buffer(2, &t.colors)],
-            ),
-        }
     }
 
     /// Records passes 1 and 2 (into the renderer's own textures). Call before [`Self::draw`]
@@ -1078,79 +781,6 @@ impl TerrainRenderer {
     pub fn target_format(&self) -> wgpu::TextureFormat {
         self.target_format
     }
-}
-
-fn buffer(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry {
-        binding,
-        resource: b.as_entire_binding(),
-    }
-}
-
-/// The level-independent refine pipelines.
-fn refine_pipelines(
-    device: &wgpu::Device,
-    layouts: &Layouts,
-    format: wgpu::TextureFormat,
-) -> Result<RefinePipelines, GpuError> {
-    let classify_src = shaders::refine_classify_module();
-    let l = &layouts.refine;
-    Ok(RefinePipelines {
-        classify: compute_pipeline(
-            device,
-            "craterfield refine classify",
-            &classify_src,
-            "cs_classify",
-            &[&l.classify],
-        )?,
-        blocks: compute_pipeline(
-            device,
-            "craterfield refine classify",
-            &classify_src,
-            "cs_blocks",
-            &[&l.classify],
-        )?,
-        args: compute_pipeline(
-            device,
-            "craterfield refine classify",
-            &classify_src,
-            "cs_args",
-            &[&l.classify],
-        )?,
-        draw: fullscreen_pipeline(
-            device,
-            "craterfield refine draw",
-            &shaders::refine_draw_module(),
-            "fs_refine",
-            &l.draw,
-            format,
-        )?,
-    })
-}
-
-/// The refine pipelines over the emitted base field `base`.
-fn refine_field_pipelines(
-    device: &wgpu::Device,
-    layouts: &Layouts,
-    base: &str,
-) -> Result<RefineFieldPipelines, GpuError> {
-    let l = &layouts.refine;
-    Ok(RefineFieldPipelines {
-        corners: compute_pipeline(
-            device,
-            "craterfield refine corners",
-            &shaders::refine_corners_module(base),
-            "cs_corners",
-            &[&layouts.field, &l.corners],
-        )?,
-        exact: compute_pipeline(
-            device,
-            "craterfield refine exact",
-            &shaders::refine_exact_module(base),
-            "cs_exact",
-            &[&layouts.field, &l.exact],
-        )?,
-    })
 }
 
 /// The world rectangle the lattice's texels cover.
