@@ -408,14 +408,7 @@ fn print_table(report: &Report, options: &Options) {
     if let (Some(direct), Some(planes), Some(refine)) =
         (cpu("direct"), cpu("planes"), cpu("refine"))
     {
-        let met = |ok: bool| if ok { "met" } else { "NOT met" };
-        println!(
-            "CPU refine vs planes (1/16): {:.2}x the frame time (target <= 1.5x: {}); vs full-res direct: {:.1}x faster (target >= 4x: {})",
-            refine / planes,
-            met(refine / planes <= 1.5),
-            direct / refine,
-            met(direct / refine >= 4.0)
-        );
+        print_refine_targets("CPU", direct, planes, refine);
     }
     let gpu = |mode: &str| {
         report
@@ -426,14 +419,7 @@ fn print_table(report: &Report, options: &Options) {
     };
     match (full, gpu("planes"), gpu("refine")) {
         (Some(direct), Some(planes), Some(refine)) => {
-            let met = |ok: bool| if ok { "met" } else { "NOT met" };
-            println!(
-                "GPU refine vs planes (1/16): {:.2}x the frame time (target <= 1.5x: {}); vs full-res direct: {:.1}x faster (target >= 4x: {})",
-                refine / planes,
-                met(refine / planes <= 1.5),
-                direct / refine,
-                met(direct / refine >= 4.0)
-            );
+            print_refine_targets("GPU", direct, planes, refine);
         }
         _ => println!("GPU refine: not measured (no adapter)"),
     }
@@ -455,5 +441,17 @@ fn print_refine(what: &str, s: &RefineStats) {
         s.pixels,
         100.0 * s.refined_pixel_fraction(),
         s.exact_evaluations
+    );
+}
+
+/// Refine's frame time against planes and direct evaluation (median ms), with the targets.
+fn print_refine_targets(what: &str, direct: f64, planes: f64, refine: f64) {
+    let met = |ok: bool| if ok { "met" } else { "NOT met" };
+    println!(
+        "{what} refine vs planes (1/16): {:.2}x the frame time (target <= 1.5x: {}); vs full-res direct: {:.1}x faster (target >= 4x: {})",
+        refine / planes,
+        met(refine / planes <= 1.5),
+        direct / refine,
+        met(direct / refine >= 4.0)
     );
 }

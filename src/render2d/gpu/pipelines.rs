@@ -70,15 +70,13 @@ pub(super) fn layout(
     })
 }
 
-/// A compute pipeline over `bind_layouts`, validation errors as values.
-pub(super) fn compute_pipeline(
+/// The shader module of `source` and a pipeline layout of `bind_layouts`.
+fn module_and_layout(
     device: &wgpu::Device,
     label: &str,
     source: &str,
-    entry: &str,
     bind_layouts: &[&wgpu::BindGroupLayout],
-) -> Result<wgpu::ComputePipeline, GpuError> {
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+) -> (wgpu::ShaderModule, wgpu::PipelineLayout) {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -90,6 +88,35 @@ pub(super) fn compute_pipeline(
         bind_group_layouts: &layouts,
         immediate_size: 0,
     });
+    (module, pipeline_layout)
+}
+
+/// `pipeline`, or the validation error the scope caught while it was made.
+fn validated<P>(
+    scope: wgpu::ErrorScopeGuard,
+    label: &str,
+    entry: &str,
+    pipeline: P,
+) -> Result<P, GpuError> {
+    match pollster::block_on(scope.pop()) {
+        Some(e) => Err(GpuError::Validation {
+            what: format!("{label} ({entry})"),
+            message: e.to_string(),
+        }),
+        None => Ok(pipeline),
+    }
+}
+
+/// A compute pipeline over `bind_layouts`, validation errors as values.
+pub(super) fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entry: &str,
+    bind_layouts: &[&wgpu::BindGroupLayout],
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let (module, pipeline_layout) = module_and_layout(device, label, source, bind_layouts);
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout: Some(&pipeline_layout),
@@ -98,13 +125,7 @@ pub(super) fn compute_pipeline(
         compilation_options: Default::default(),
         cache: None,
     });
-    match pollster::block_on(scope.pop()) {
-        Some(e) => Err(GpuError::Validation {
-            what: format!("{label} ({entry})"),
-            message: e.to_string(),
-        }),
-        None => Ok(pipeline),
-    }
+    validated(scope, label, entry, pipeline)
 }
 
 /// Creates a shader module and a full-screen pipeline, turning validation errors into values.
@@ -137,17 +158,7 @@ pub(super) fn render_pipeline(
 ) -> Result<wgpu::RenderPipeline, GpuError> {
     let (vertex_entry, entry) = entries;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
-        bind_layouts.iter().map(|l| Some(*l)).collect();
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &layouts,
-        immediate_size: 0,
-    });
+    let (module, pipeline_layout) = module_and_layout(device, label, source, bind_layouts);
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout: Some(&pipeline_layout),
@@ -173,13 +184,7 @@ pub(super) fn render_pipeline(
         multiview_mask: None,
         cache: None,
     });
-    match pollster::block_on(scope.pop()) {
-        Some(e) => Err(GpuError::Validation {
-            what: format!("{label} ({entry})"),
-            message: e.to_string(),
-        }),
-        None => Ok(pipeline),
-    }
+    validated(scope, label, entry, pipeline)
 }
 
 /// The whole of buffer `b` at `binding`.

@@ -276,6 +276,9 @@ impl TerrainRenderer {
         if refine {
             self.check_refine_limits()?;
         }
+        // The level graph's content fingerprint: whether the emitter and the cell proofs
+        // are current.
+        let fingerprint = crate::emit::graph_fingerprint(terrain.base());
         let mut stats = PrepareStats {
             upload: self.mirror.sync(&self.device, &self.queue, terrain)?,
             ..PrepareStats::default()
@@ -285,10 +288,10 @@ impl TerrainRenderer {
         }
         self.ensure_lowres(camera, &lattice)?;
         if refine {
-            self.ensure_refine(terrain, camera)?;
+            self.ensure_refine(terrain, fingerprint, camera)?;
         }
         self.write_palette(palette);
-        let key = self.select_pipeline(terrain, &lattice, &mut stats)?;
+        let key = self.select_pipeline(terrain, fingerprint, &lattice, &mut stats)?;
         let dims = self.lowres.as_ref().map_or((1, 1), |t| t.dims);
         let uniform = FrameUniform {
             palette_len: palette.len().min(MAX_PALETTE) as u32,
@@ -318,11 +321,10 @@ impl TerrainRenderer {
     fn select_pipeline(
         &mut self,
         terrain: &Terrain<Graph>,
+        fingerprint: u64,
         lattice: &Lattice,
         stats: &mut PrepareStats,
     ) -> Result<u64, GpuError> {
-        // The level graph's content fingerprint decides whether the emitter is current.
-        let fingerprint = crate::emit::graph_fingerprint(terrain.base());
         let current = self
             .emitter
             .take()
@@ -402,7 +404,12 @@ impl TerrainRenderer {
 
     /// Compiles the level-independent refine passes once, syncs the cell proofs and sizes
     /// the per-frame buffers for the camera.
-    fn ensure_refine(&mut self, terrain: &Terrain<Graph>, camera: &Camera) -> Result<(), GpuError> {
+    fn ensure_refine(
+        &mut self,
+        terrain: &Terrain<Graph>,
+        fingerprint: u64,
+        camera: &Camera,
+    ) -> Result<(), GpuError> {
         if self.refine_pipelines.is_none() {
             self.refine_pipelines = Some(RefinePipelines::new(
                 &self.device,
@@ -410,7 +417,6 @@ impl TerrainRenderer {
                 self.target_format,
             )?);
         }
-        let fingerprint = crate::emit::graph_fingerprint(terrain.base());
         if self
             .proofs
             .sync(&self.device, &self.queue, terrain, fingerprint)?
