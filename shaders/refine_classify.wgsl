@@ -1,11 +1,14 @@
-// Mode `refine` on the GPU, the two classification levels (docs/render2d-pipeline.md,
-// "Refine on the GPU"). Needs common.wgsl, refine_common.wgsl and refine_proof.wgsl.
-// Level 0 (`cs_classify`) bounds each block from the pass-1 texels around it; level 1
-// (`cs_blocks`) bounds the blocks level 0 left open from the exact samples at their four
-// corners (written by `cs_corners`, refine_corners.wgsl), and appends the blocks it cannot
-// prove to the list the exact pass evaluates; `cs_args` sizes that pass's dispatch.
+// Mode `refine` on the GPU, the two distance-bound classification levels
+// (docs/render2d-pipeline.md, "Refine on the GPU"). Needs common.wgsl, refine_common.wgsl
+// and refine_proof.wgsl. Level 0 (`cs_classify`) bounds each block from the pass-1 texels
+// around it; the event signs (`cs_signs`, refine_signs.wgsl) try the blocks it left open;
+// level 1 (`cs_blocks`) bounds the blocks still open from the exact samples at their four
+// corners (written by `cs_corners`, refine_corners.wgsl) and their signs, appends the blocks
+// it cannot prove to the list the exact pass evaluates, and counts every block once;
+// `cs_args` sizes the exact pass's dispatch.
 
 @group(0) @binding(1) var texels: texture_2d<f32>;
+@group(0) @binding(2) var<storage, read> proof: array<CellProof>;
 @group(0) @binding(3) var<storage, read_write> blocks: array<BlockState>;
 @group(0) @binding(4) var<storage, read> corners: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read_write> work: Work;
@@ -13,26 +16,6 @@
 
 // Most texels per axis level 0 reads around one block.
 const MAX_TEXELS: i32 = 4;
-
-// Sky, deep solid (with its material) or still open, from lo/hi bounds and the material
-// proof over the block's pixel rectangle.
-fn decide(lo: f32, hi: f32, rect: vec4<f32>, final_level: bool) -> BlockState {
-    if lo >= sky_at() {
-        return BlockState(CLASS_SKY, 0u, lo, hi);
-    }
-    if hi <= solid_at() {
-        let material = span_material(cell_span(rect.xy, rect.zw));
-        if material != MATERIAL_NONE {
-            if hi <= deep_at() {
-                return BlockState(CLASS_DEEP, material, lo, hi);
-            }
-            if final_level {
-                return BlockState(CLASS_SHADED, material, lo, hi);
-            }
-        }
-    }
-    return BlockState(select(CLASS_NEED, CLASS_EXACT, final_level), MATERIAL_NONE, lo, hi);
-}
 
 fn count_final(kind: u32) {
     atomicAdd(&work.counters[COUNT_BLOCKS], 1u);
@@ -81,11 +64,7 @@ fn cs_classify(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
     }
-    let state = decide(lo, hi, rect, false);
-    blocks[id.y * dims.x + id.x] = state;
-    if state.kind != CLASS_NEED {
-        count_final(state.kind);
-    }
+    blocks[id.y * dims.x + id.x] = decide(lo, hi, 0u, rect, false);
 }
 
 @compute @workgroup_size(8, 8)
@@ -97,6 +76,7 @@ fn cs_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = id.y * dims.x + id.x;
     let open = blocks[index];
     if open.kind != CLASS_NEED {
+        count_final(open.kind);
         return;
     }
     let px = block_pixels(id.xy);
@@ -118,18 +98,18 @@ fn cs_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
             hi = min(hi, d + r);
         }
     }
-    let state = decide(lo, hi, rect, true);
-    blocks[index] = state;
-    count_final(state.kind);
+    var state = decide(lo, hi, open.signs, rect, true);
     if state.kind == CLASS_EXACT {
         let slot = atomicAdd(&work.exact_blocks, 1u);
         exact_list[slot] = index;
         // The draw finds the block's exact colours by its list slot.
-        blocks[index].material = slot;
+        state.material = slot;
         atomicAdd(&work.counters[COUNT_EXACT_BLOCKS], 1u);
         let pixels = (px.z - px.x + 1u) * (px.w - px.y + 1u);
         atomicAdd(&work.counters[COUNT_EXACT_PIXELS], pixels);
     }
+    blocks[index] = state;
+    count_final(state.kind);
 }
 
 // The exact pass's workgroup counts, as a 2D grid when one dimension cannot hold them.

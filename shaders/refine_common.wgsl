@@ -28,11 +28,20 @@ const COUNT_CORNERS: u32 = 5u;
 
 struct BlockState {
     kind: u32,
+    // The proven material (or MATERIAL_PER_CELL); an EXACT block's slot in the exact list.
     material: u32,
     // Bounds of the exact distance over the block's pixel centres, world units.
     lo: f32,
     hi: f32,
+    // What the events of the cells it touches force over it (SIGN_* bits, from cs_signs).
+    signs: u32,
 }
+
+// `BlockState.signs`: the field is at least sky_at() everywhere in the block, at most
+// solid_at(), at most deep_at() (refine_proof.wgsl).
+const SIGN_ABOVE: u32 = 1u;
+const SIGN_BELOW_SOLID: u32 = 2u;
+const SIGN_BELOW_DEEP: u32 = 4u;
 
 // The indirect dispatch of the exact pass (workgroups x, y, z, written by `cs_args`), the
 // number of blocks in the exact list, then the frame's counters.

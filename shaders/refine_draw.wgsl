@@ -4,6 +4,7 @@
 // and the exact blocks' colours from the exact pass (refine_exact.wgsl). Needs common.wgsl,
 // shade.wgsl, refine_common.wgsl and refine_proof.wgsl.
 
+@group(0) @binding(2) var<storage, read> proof: array<CellProof>;
 @group(0) @binding(3) var<storage, read> blocks: array<BlockState>;
 @group(0) @binding(4) var<storage, read> corners: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read> exact_colors: array<vec2<u32>>;

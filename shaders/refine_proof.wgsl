@@ -1,8 +1,10 @@
 // Mode `refine` on the GPU: the proof of one block from distance samples around it, with
 // per-cell slope bounds. Mirrors the distance proof of src/render2d/twin/refine.rs (the
-// Lipschitz cones; the GPU does not read event signs or material margins, so it proves a
-// subset of what the twin proves and evaluates the rest). Needs common.wgsl and
-// refine_common.wgsl. `CellProof` mirrors `GpuCellProof` in src/render2d/gpu/uniforms.rs.
+// Lipschitz cones; the event signs are refine_signs.wgsl's; the GPU does not read material
+// margins, so it proves a subset of what the twin proves and evaluates the rest). Needs
+// common.wgsl and refine_common.wgsl; the including module binds `proof`, the array of
+// `CellProof`s (one per grid cell, then one for every point outside the grid). `CellProof`
+// mirrors `GpuCellProof` in src/render2d/gpu/uniforms.rs.
 
 struct CellProof {
     // Slope bound of the field over the cell; `known` = 0 when there is none.
@@ -12,10 +14,10 @@ struct CellProof {
     // The cell's constant material, or MATERIAL_NONE.
     material: u32,
     known: u32,
+    // Bounds of the cell's starting state over the cell (before its events).
+    start: vec2<f32>,
+    pad: vec2<u32>,
 }
-
-// One record per grid cell, then one for every point outside the grid.
-@group(0) @binding(2) var<storage, read> proof: array<CellProof>;
 
 // Most cells one proof reads; a wider span proves nothing.
 const MAX_SPAN_CELLS: i32 = 64;
@@ -106,6 +108,35 @@ fn span_material(s: vec4<i32>) -> u32 {
         }
     }
     return select(MATERIAL_PER_CELL, first, same);
+}
+
+// A block's class from the bounds lo <= d <= hi over its pixel rectangle, what its events
+// force (`signs`, SIGN_* bits) and the material proof: sky, deep solid, shaded solid (at
+// the final level only: it is drawn from the corner samples) or not proven (NEED before the
+// final level, EXACT at it).
+fn decide(lo: f32, hi: f32, signs: u32, rect: vec4<f32>, final_level: bool) -> BlockState {
+    if lo >= sky_at() || (signs & SIGN_ABOVE) != 0u {
+        return BlockState(CLASS_SKY, 0u, max(lo, sky_at()), hi, signs);
+    }
+    var top = hi;
+    if (signs & SIGN_BELOW_DEEP) != 0u {
+        top = min(top, deep_at());
+    } else if (signs & SIGN_BELOW_SOLID) != 0u {
+        top = min(top, solid_at());
+    }
+    if top <= solid_at() {
+        let material = span_material(cell_span(rect.xy, rect.zw));
+        if material != MATERIAL_NONE {
+            if top <= deep_at() {
+                return BlockState(CLASS_DEEP, material, lo, top, signs);
+            }
+            if final_level {
+                return BlockState(CLASS_SHADED, material, lo, top, signs);
+            }
+        }
+    }
+    let open = select(CLASS_NEED, CLASS_EXACT, final_level);
+    return BlockState(open, MATERIAL_NONE, lo, top, signs);
 }
 
 // The material of pixel p of a block proven with `material`.

@@ -130,6 +130,17 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
+    /// Bounds of cell `cell`'s starting state (before its events) over the whole cell, as
+    /// [`Terrain::rect_sign`] reads them: the base's range over the cell (or the band), the
+    /// band for air, its negation for solid, a brick's smallest and largest samples.
+    /// `None`: no such cell.
+    pub fn cell_start_range(&self, cell: usize) -> Option<(f32, f32)> {
+        self.grid.cells.get(cell)?;
+        let min = self.grid.cell_min_f32(cell);
+        let max = min + Vec2::splat(self.grid.cell_size());
+        Some(self.start_range(cell, min, max))
+    }
+
     /// Bounds of cell `cell`'s starting state over the rectangle `[min, max]` (a brick's
     /// interpolant stays within the samples of the lattice squares it covers; the base's
     /// bound is over the whole cell).

@@ -2,13 +2,15 @@
 //! per-cell proof data mirrored from the terrain, the block, corner, work and exact-list
 //! buffers of one frame size, and the passes that use them.
 //!
-//! After pass 1, one compute pass runs five dispatches: `cs_classify` (level 0: every
-//! `4 x 4` pixel block bounded from the texels around it), `cs_corners` (exact samples at the
-//! corners of the blocks level 0 left open) and `cs_blocks` (level 1: those blocks bounded
-//! from their corner samples; the ones still open are appended to a list with an atomic
-//! counter); `cs_args` turns the count into the workgroups of an indirect dispatch of
-//! `cs_exact`, which evaluates and shades every pixel of the listed blocks as the direct pass
-//! does and stores the colours by list slot. Pass 3 (`fs_refine`) draws the proven blocks and
+//! After pass 1, one compute pass runs six dispatches: `cs_classify` (level 0: every
+//! `4 x 4` pixel block bounded from the texels around it), `cs_signs` (what the events of
+//! the cells an open block touches force over it: sky and deep solid decided there, the
+//! "solid" bound kept for level 1), `cs_corners` (exact samples at the corners of the blocks
+//! still open) and `cs_blocks` (level 1: those blocks bounded from their corner samples and
+//! signs; the ones still open are appended to a list with an atomic counter); `cs_args`
+//! turns the count into the workgroups of an indirect dispatch of `cs_exact`, which
+//! evaluates and shades every pixel of the listed blocks as the direct pass does and stores
+//! the colours by list slot. Pass 3 (`fs_refine`) draws the proven blocks and
 //! copies the exact ones, so every pixel that no proof covers is the exact render's.
 
 use super::GpuError;
@@ -22,6 +24,9 @@ use crate::render2d::twin::{REFINE_BLOCK as BLOCK, RefineStats};
 /// Storage buffers one stage of the refine passes binds at most (`cs_corners`: the four of
 /// the field, blocks, corners and work; `cs_exact`: the field's, list, work and colours).
 pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 7;
+
+/// Bytes of one cell proof record.
+const RECORD: u64 = std::mem::size_of::<GpuCellProof>() as u64;
 
 /// Workgroup side of the refine compute entry points (`@workgroup_size(8, 8)`).
 const WORKGROUP: u32 = 8;
@@ -64,7 +69,7 @@ impl ProofMirror {
         let identity = (fingerprint, grid.dims());
         let reset = self.identity != Some(identity);
         if reset {
-            let bytes = (cells as u64 + 1) * 16;
+            let bytes = (cells as u64 + 1) * RECORD;
             let limit = device.limits().max_storage_buffer_binding_size;
             if bytes > limit {
                 return Err(GpuError::LimitsTooLow {
@@ -85,18 +90,18 @@ impl ProofMirror {
                 *sent = cell.revision();
             }
         }
-        let outside = GpuCellProof::new(terrain.lipschitz(), 0.0, None);
+        let outside = GpuCellProof::new(terrain.lipschitz(), 0.0, None, None);
         let outside_changed = self.records[cells] != outside;
         self.records[cells] = outside;
         let first = dirty.iter().copied().min();
         let last = dirty.iter().copied().max();
         if let (Some(a), Some(b)) = (first, last) {
             let bytes = bytemuck::cast_slice(&self.records[a..=b]);
-            queue.write_buffer(&self.buffer, a as u64 * 16, bytes);
+            queue.write_buffer(&self.buffer, a as u64 * RECORD, bytes);
         }
         if outside_changed || reset {
             let bytes = bytemuck::bytes_of(&self.records[cells]);
-            queue.write_buffer(&self.buffer, cells as u64 * 16, bytes);
+            queue.write_buffer(&self.buffer, cells as u64 * RECORD, bytes);
         }
         Ok(reset)
     }
@@ -105,7 +110,7 @@ impl ProofMirror {
 fn proof_buffer(device: &wgpu::Device, records: u64) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("craterfield refine proofs"),
-        size: records.max(1) * 16,
+        size: records.max(1) * RECORD,
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
@@ -114,8 +119,13 @@ fn proof_buffer(device: &wgpu::Device, records: u64) -> wgpu::Buffer {
 /// What the proof reads about cell `i`.
 fn cell_proof<F: Sdf>(terrain: &Terrain<F>, i: usize) -> GpuCellProof {
     match terrain.cell_bounds(i) {
-        Some(b) => GpuCellProof::new(b.lipschitz, b.error, terrain.cell_material(i)),
-        None => GpuCellProof::new(f32::INFINITY, f32::INFINITY, None),
+        Some(b) => GpuCellProof::new(
+            b.lipschitz,
+            b.error,
+            terrain.cell_material(i),
+            terrain.cell_start_range(i),
+        ),
+        None => GpuCellProof::new(f32::INFINITY, f32::INFINITY, None, None),
     }
 }
 
@@ -204,7 +214,8 @@ impl RefineTargets {
         self.dims == block_dims(width, height)
     }
 
-    /// Resets the exact list and the counters, then records the three dispatches.
+    /// Resets the exact list and the counters, then records the six dispatches (see the
+    /// module doc).
     pub(crate) fn encode(&self, encoder: &mut wgpu::CommandEncoder, passes: ClassifyPasses<'_>) {
         encoder.copy_buffer_to_buffer(&self.work_start, 0, &self.work, 0, 48);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -216,8 +227,11 @@ impl RefineTargets {
         pass.set_pipeline(passes.classify);
         pass.set_bind_group(0, passes.classify_bind, &[]);
         pass.dispatch_workgroups(groups(bx), groups(by), 1);
-        pass.set_pipeline(passes.corners);
+        pass.set_pipeline(passes.signs);
         pass.set_bind_group(0, passes.field_bind, &[]);
+        pass.set_bind_group(1, passes.signs_bind, &[]);
+        pass.dispatch_workgroups(groups(bx), groups(by), 1);
+        pass.set_pipeline(passes.corners);
         pass.set_bind_group(1, passes.corners_bind, &[]);
         pass.dispatch_workgroups(groups(bx + 1), groups(by + 1), 1);
         pass.set_pipeline(passes.blocks);
@@ -256,11 +270,13 @@ pub(crate) struct ClassifyPasses<'a> {
     pub(crate) classify: &'a wgpu::ComputePipeline,
     pub(crate) corners: &'a wgpu::ComputePipeline,
     pub(crate) blocks: &'a wgpu::ComputePipeline,
+    pub(crate) signs: &'a wgpu::ComputePipeline,
     pub(crate) args: &'a wgpu::ComputePipeline,
     pub(crate) exact: &'a wgpu::ComputePipeline,
     pub(crate) classify_bind: &'a wgpu::BindGroup,
     pub(crate) field_bind: &'a wgpu::BindGroup,
     pub(crate) corners_bind: &'a wgpu::BindGroup,
+    pub(crate) signs_bind: &'a wgpu::BindGroup,
     pub(crate) exact_bind: &'a wgpu::BindGroup,
 }
 

@@ -20,9 +20,10 @@ pub(super) struct RefineResources<'a> {
     pub(super) texels: &'a wgpu::TextureView,
 }
 
-/// The refine passes that evaluate the field: corner samples and the exact pass.
+/// The refine passes that read the field: corner samples, event signs and the exact pass.
 pub(super) struct RefineFieldPipelines {
     pub(super) corners: wgpu::ComputePipeline,
+    pub(super) signs: wgpu::ComputePipeline,
     pub(super) exact: wgpu::ComputePipeline,
 }
 
@@ -40,6 +41,8 @@ pub(super) struct RefineLayouts {
     pub(super) classify: wgpu::BindGroupLayout,
     /// Group 1 of `cs_corners` (group 0 is the field's).
     pub(super) corners: wgpu::BindGroupLayout,
+    /// Group 1 of `cs_signs` (group 0 is the field's).
+    pub(super) signs: wgpu::BindGroupLayout,
     /// Group 0 of `fs_refine`.
     pub(super) draw: wgpu::BindGroupLayout,
     /// Group 1 of the exact pass (group 0 is the field's).
@@ -50,6 +53,7 @@ pub(super) struct RefineLayouts {
 pub(super) struct RefineBinds {
     pub(super) classify: wgpu::BindGroup,
     pub(super) corners: wgpu::BindGroup,
+    pub(super) signs: wgpu::BindGroup,
     pub(super) draw: wgpu::BindGroup,
     pub(super) exact: wgpu::BindGroup,
 }
@@ -79,6 +83,14 @@ impl RefineLayouts {
                     buffer_entry(0, compute, true),
                     buffer_entry(1, compute, false),
                     buffer_entry(2, compute, false),
+                ],
+            ),
+            signs: layout(
+                device,
+                "craterfield refine signs",
+                &[
+                    buffer_entry(0, compute, true),
+                    buffer_entry(1, compute, false),
                 ],
             ),
             draw: layout(
@@ -165,6 +177,13 @@ impl RefineFieldPipelines {
                 "cs_corners",
                 &[field, &l.corners],
             )?,
+            signs: compute_pipeline(
+                device,
+                "craterfield refine signs",
+                &shaders::refine_signs_module(base),
+                "cs_signs",
+                &[field, &l.signs],
+            )?,
             exact: compute_pipeline(
                 device,
                 "craterfield refine exact",
@@ -218,6 +237,11 @@ impl RefineBinds {
                     buffer(1, &t.corners),
                     buffer(2, &t.work),
                 ],
+            ),
+            signs: group(
+                "craterfield refine signs",
+                &l.signs,
+                &[buffer(0, proofs), buffer(1, &t.blocks)],
             ),
             draw: group(
                 "craterfield refine draw",

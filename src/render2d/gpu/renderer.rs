@@ -673,11 +673,13 @@ impl TerrainRenderer {
                 classify: &shared.classify,
                 corners: &own.corners,
                 blocks: &shared.blocks,
+                signs: &own.signs,
                 args: &shared.args,
                 exact: &own.exact,
                 classify_bind: &binds.classify,
                 field_bind: &bind.field,
                 corners_bind: &binds.corners,
+                signs_bind: &binds.signs,
                 exact_bind: &binds.exact,
             },
         );

@@ -45,6 +45,11 @@ pub const REFINE_CORNERS: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/shaders/refine_corners.wgsl"
 ));
+/// Mode refine: the event-sign proof of the blocks the distance bounds left open.
+pub const REFINE_SIGNS: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/shaders/refine_signs.wgsl"
+));
 /// Mode refine: the proven blocks drawn.
 pub const REFINE_DRAW: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -88,6 +93,18 @@ pub fn refine_classify_module() -> String {
 /// Mode refine, the corner samples over the emitted base field (`cs_corners`).
 pub fn refine_corners_module(base_field: &str) -> String {
     join(&[COMMON, base_field, FIELD, REFINE_COMMON, REFINE_CORNERS])
+}
+
+/// Mode refine, the event signs over the emitted base field's event lists (`cs_signs`).
+pub fn refine_signs_module(base_field: &str) -> String {
+    join(&[
+        COMMON,
+        base_field,
+        FIELD,
+        REFINE_COMMON,
+        REFINE_PROOF,
+        REFINE_SIGNS,
+    ])
 }
 
 /// Mode refine, the proven blocks (`fs_refine`).

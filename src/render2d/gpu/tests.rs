@@ -45,6 +45,10 @@ fn every_pass_validates_over_every_example_level() {
             &shaders::refine_corners_module(&field),
         );
         validate(
+            &format!("refine signs over {name}"),
+            &shaders::refine_signs_module(&field),
+        );
+        validate(
             &format!("refine exact over {name}"),
             &shaders::refine_exact_module(&field),
         );
@@ -186,6 +190,8 @@ fn refine_modules_have_their_entry_points_and_struct_layouts() {
     let (_, field) = &level_fields()[0];
     let corners = validate("refine corners", &shaders::refine_corners_module(field));
     assert!(entry_names(&corners).contains(&"cs_corners".into()));
+    let signs = validate("refine signs", &shaders::refine_signs_module(field));
+    assert!(entry_names(&signs).contains(&"cs_signs".into()));
     let exact = validate("refine exact", &shaders::refine_exact_module(field));
     assert!(entry_names(&exact).contains(&"cs_exact".into()));
     for (name, size) in [

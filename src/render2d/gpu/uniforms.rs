@@ -223,9 +223,14 @@ pub(crate) struct GpuCellProof {
     pub material: u32,
     /// 1 when the bounds are known (finite).
     pub known: u32,
+    /// Bounds of the cell's starting state over the cell (`Terrain::cell_start_range`),
+    /// `[-UNBOUNDED, UNBOUNDED]` when there are none.
+    pub start: [f32; 2],
+    /// Keeps the record at 32 bytes.
+    pub pad: [u32; 2],
 }
 
-const _: () = assert!(std::mem::size_of::<GpuCellProof>() == 16);
+const _: () = assert!(std::mem::size_of::<GpuCellProof>() == 32);
 
 /// `MATERIAL_NONE` in `shaders/refine_common.wgsl`: the material is not constant.
 pub(crate) const MATERIAL_NONE: u32 = u32::MAX;
@@ -234,9 +239,15 @@ pub(crate) const MATERIAL_NONE: u32 = u32::MAX;
 pub(crate) const UNBOUNDED: f32 = 1.0e30;
 
 impl GpuCellProof {
-    /// A cell with slope bound `lipschitz`, border error `error` and constant material
-    /// `material`; bounds that are not finite (or past [`UNBOUNDED`]) are unknown.
-    pub(crate) fn new(lipschitz: f32, error: f32, material: Option<u16>) -> GpuCellProof {
+    /// A cell with slope bound `lipschitz`, border error `error`, constant material
+    /// `material` and starting-state range `start`; bounds that are not finite (or past
+    /// [`UNBOUNDED`]) are unknown.
+    pub(crate) fn new(
+        lipschitz: f32,
+        error: f32,
+        material: Option<u16>,
+        start: Option<(f32, f32)>,
+    ) -> GpuCellProof {
         let known = lipschitz.is_finite()
             && error.is_finite()
             && lipschitz < UNBOUNDED * 0.5
@@ -246,6 +257,11 @@ impl GpuCellProof {
             error: if known { error } else { 0.0 },
             material: material.map_or(MATERIAL_NONE, u32::from),
             known: u32::from(known),
+            start: match start {
+                Some((lo, hi)) if lo.is_finite() && hi.is_finite() && lo <= hi => [lo, hi],
+                _ => [-UNBOUNDED, UNBOUNDED],
+            },
+            pad: [0; 2],
         }
     }
 }
@@ -256,15 +272,18 @@ impl GpuCellProof {
 pub(crate) struct GpuBlockState {
     /// `CLASS_*` in `refine_common.wgsl`.
     pub kind: u32,
-    /// Proven material, `MATERIAL_PER_CELL` or [`MATERIAL_NONE`].
+    /// Proven material, `MATERIAL_PER_CELL` or [`MATERIAL_NONE`]; an exact block's slot
+    /// in the exact list.
     pub material: u32,
     /// Lower bound of the distance over the block.
     pub lo: f32,
     /// Upper bound.
     pub hi: f32,
+    /// What the events force over the block (`SIGN_*` bits in `refine_common.wgsl`).
+    pub signs: u32,
 }
 
-const _: () = assert!(std::mem::size_of::<GpuBlockState>() == 16);
+const _: () = assert!(std::mem::size_of::<GpuBlockState>() == 20);
 
 /// The exact pass's indirect dispatch, its block count and the frame's refine counters;
 /// `Work` in `shaders/refine_common.wgsl`.
