@@ -13,7 +13,7 @@ use craterfield::gpu::READBACK_FORMAT;
 use craterfield::gpu::{GpuContext, GpuError};
 use craterfield::render2d::gpu::TerrainRenderer;
 use craterfield::render2d::gpu::{Pipeline, render_to_image};
-use craterfield::render2d::twin::render_twin;
+use craterfield::render2d::twin::{render_refine, render_twin};
 use craterfield::render2d::{
     Camera, ExactRenderOptions, Reconstruction, RenderOptions, Scale, Upsample, render_exact,
 };
@@ -240,6 +240,48 @@ fn refine_matches_exact_and_twin(ctx: &GpuContext) -> TestResult {
                 stats.exact_evaluations
             );
         }
+    }
+    Ok(())
+}
+
+/// On ground cratered thousands of times, where most blocks are proven from the events of
+/// their cells, mode refine on the GPU draws what the GPU's own full-resolution direct pass
+/// draws: exact blocks are evaluated by the same code, proven sky and deep blocks have the
+/// same colours, and only the depth shade of shaded blocks is interpolated (a wrong proof
+/// would turn solid pixels into sky or back, a difference of a hundred levels or more). The
+/// GPU proves about as much as the twin, which also reads material margins.
+fn refine_on_cratered_ground_is_the_direct_render(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 3000);
+    let pal = palette(&level);
+    let cam = camera(Vec2::new(1400.0, 380.0), 1.0, 320, 180);
+    let options = RenderOptions {
+        reconstruction: Reconstruction::Refine,
+        ..RenderOptions::default()
+    };
+    let direct = gpu_image(ctx, &terrain, &pal, &cam, &options, Pipeline::Direct)
+        .map_err(|e| e.to_string())?;
+    let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())
+        .map_err(|e| e.to_string())?;
+    r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+    let refine =
+        render_to_image(&r, cam.width, cam.height, Pipeline::Reduced).map_err(|e| e.to_string())?;
+    let shade_only = DiffOptions {
+        pixel_tolerance: 24,
+        max_differing_fraction: 0.0,
+        max_mean: 0.5,
+        ..DiffOptions::default()
+    };
+    expect_close("cratered-refine-vs-direct", &refine, &direct, &shade_only)?;
+    let gpu = r.refine_stats().map_err(|e| e.to_string())?;
+    let (_, twin) = render_refine(&terrain, &pal, &cam, &options, 0).map_err(|e| e.to_string())?;
+    eprintln!(
+        "cratered: GPU {:.2}% of pixels exact, twin {:.2}%",
+        100.0 * gpu.refined_pixel_fraction(),
+        100.0 * twin.refined_pixel_fraction()
+    );
+    if gpu.refined_pixels > twin.refined_pixels * 3 / 2 + 64 {
+        return Err(format!("the GPU proved much less than the twin: {gpu:?} vs {twin:?}").into());
     }
     Ok(())
 }
@@ -583,10 +625,14 @@ fn resizing_reallocates_and_matches_a_fresh_renderer(ctx: &GpuContext) -> TestRe
 
 fn main() {
     let args = Arguments::from_args();
-    let tests: [(&str, GpuTest); 10] = [
+    let tests: [(&str, GpuTest); 11] = [
         (
             "refine_matches_exact_and_twin",
             refine_matches_exact_and_twin,
+        ),
+        (
+            "refine_on_cratered_ground_is_the_direct_render",
+            refine_on_cratered_ground_is_the_direct_render,
         ),
         (
             "gpu_matches_twin_every_mode_and_scale",
