@@ -17,14 +17,18 @@
 // Most texels per axis level 0 reads around one block.
 const MAX_TEXELS: i32 = 4;
 
+// The counts of one `cs_blocks` workgroup, added to `work.counters` once per workgroup: one
+// global atomic per block and counter would make every invocation wait on the same words.
+var<workgroup> tally: array<atomic<u32>, COUNTERS_PER_BLOCK>;
+
 fn count_final(kind: u32) {
-    atomicAdd(&work.counters[COUNT_BLOCKS], 1u);
+    atomicAdd(&tally[COUNT_BLOCKS], 1u);
     switch kind {
         case CLASS_SKY: {
-            atomicAdd(&work.counters[COUNT_SKY], 1u);
+            atomicAdd(&tally[COUNT_SKY], 1u);
         }
         case CLASS_DEEP, CLASS_SHADED: {
-            atomicAdd(&work.counters[COUNT_SOLID], 1u);
+            atomicAdd(&tally[COUNT_SOLID], 1u);
         }
         default: {}
     }
@@ -68,11 +72,29 @@ fn cs_classify(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 @compute @workgroup_size(8, 8)
-fn cs_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
-    let dims = block_dims();
-    if id.x >= dims.x || id.y >= dims.y {
-        return;
+fn cs_blocks(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    if lane < COUNTERS_PER_BLOCK {
+        atomicStore(&tally[lane], 0u);
     }
+    workgroupBarrier();
+    let dims = block_dims();
+    if id.x < dims.x && id.y < dims.y {
+        finish_block(id.xy, dims);
+    }
+    workgroupBarrier();
+    if lane < COUNTERS_PER_BLOCK {
+        let n = atomicLoad(&tally[lane]);
+        if n > 0u {
+            atomicAdd(&work.counters[lane], n);
+        }
+    }
+}
+
+// Level 1 of one block (see the module comment), counted into `tally`.
+fn finish_block(id: vec2<u32>, dims: vec2<u32>) {
     let index = id.y * dims.x + id.x;
     let open = blocks[index];
     if open.kind != CLASS_NEED {
@@ -104,9 +126,9 @@ fn cs_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
         exact_list[slot] = index;
         // The draw finds the block's exact colours by its list slot.
         state.material = slot;
-        atomicAdd(&work.counters[COUNT_EXACT_BLOCKS], 1u);
+        atomicAdd(&tally[COUNT_EXACT_BLOCKS], 1u);
         let pixels = (px.z - px.x + 1u) * (px.w - px.y + 1u);
-        atomicAdd(&work.counters[COUNT_EXACT_PIXELS], pixels);
+        atomicAdd(&tally[COUNT_EXACT_PIXELS], pixels);
     }
     blocks[index] = state;
     count_final(state.kind);

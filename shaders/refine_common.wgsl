@@ -25,6 +25,8 @@ const COUNT_SOLID: u32 = 2u;
 const COUNT_EXACT_BLOCKS: u32 = 3u;
 const COUNT_EXACT_PIXELS: u32 = 4u;
 const COUNT_CORNERS: u32 = 5u;
+// The slots `cs_blocks` counts (COUNT_BLOCKS to COUNT_EXACT_PIXELS).
+const COUNTERS_PER_BLOCK: u32 = 5u;
 
 struct BlockState {
     kind: u32,

@@ -35,6 +35,9 @@ pub(crate) struct Options {
     /// Image height.
     #[arg(long, default_value_t = 1080)]
     pub height: u32,
+    /// Time the CPU rows only (no adapter is asked for): for profiling the twin.
+    #[arg(long)]
+    pub cpu_only: bool,
 }
 
 #[derive(Serialize)]
@@ -94,7 +97,7 @@ impl<T: FnMut(&mut wgpu::CommandEncoder, Timestamp<'_>) -> Result<(), GpuError>>
 
 fn encode_frame(
     ctx: &GpuContext,
-    record: &mut impl Record,
+    record: &mut dyn Record,
     ts: Timestamp<'_>,
 ) -> Result<wgpu::CommandBuffer, GpuError> {
     let mut encoder = ctx
@@ -114,33 +117,59 @@ fn wait(ctx: &GpuContext) -> Result<(), GpuError> {
 /// Times `frames` frames recorded by `record` after two warm-up frames: GPU timestamps when
 /// available, else wall time of submit + wait.
 fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<Times, GpuError> {
+    let mut times = time_interleaved(ctx, frames, &mut [&mut record])?;
+    Ok(times.remove(0))
+}
+
+/// [`time_frames`] for several configurations at once, their frames taken in turn, so
+/// that a machine that slows down or speeds up during the run does so for all of them
+/// alike (the targets compare such rows).
+fn time_interleaved(
+    ctx: &GpuContext,
+    frames: u32,
+    records: &mut [&mut dyn Record],
+) -> Result<Vec<Times>, GpuError> {
     for _ in 0..2 {
-        ctx.queue.submit([encode_frame(ctx, &mut record, None)?]);
-        wait(ctx)?;
+        for record in records.iter_mut() {
+            ctx.queue.submit([encode_frame(ctx, *record, None)?]);
+            wait(ctx)?;
+        }
     }
-    match Timestamps::new(&ctx.device, &ctx.queue, frames) {
-        Some(ts) => {
+    let stamps: Option<Vec<Timestamps>> = records
+        .iter()
+        .map(|_| Timestamps::new(&ctx.device, &ctx.queue, frames))
+        .collect();
+    match stamps {
+        Some(stamps) => {
             for i in 0..frames {
-                ctx.queue
-                    .submit([encode_frame(ctx, &mut record, ts.pair(i))?]);
-                wait(ctx)?;
+                for (record, ts) in records.iter_mut().zip(&stamps) {
+                    ctx.queue.submit([encode_frame(ctx, *record, ts.pair(i))?]);
+                    wait(ctx)?;
+                }
             }
             let mut encoder = ctx
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-            ts.encode_resolve(&mut encoder);
+            for ts in &stamps {
+                ts.encode_resolve(&mut encoder);
+            }
             ctx.queue.submit([encoder.finish()]);
-            Ok(Times::of(ts.read_ms(&ctx.device)?))
+            stamps
+                .iter()
+                .map(|ts| ts.read_ms(&ctx.device).map(Times::of))
+                .collect()
         }
         None => {
-            let mut ms = Vec::new();
+            let mut ms = vec![Vec::new(); records.len()];
             for _ in 0..frames {
-                let t = Instant::now();
-                ctx.queue.submit([encode_frame(ctx, &mut record, None)?]);
-                wait(ctx)?;
-                ms.push(t.elapsed().as_secs_f64() * 1e3);
+                for (record, ms) in records.iter_mut().zip(&mut ms) {
+                    let t = Instant::now();
+                    ctx.queue.submit([encode_frame(ctx, *record, None)?]);
+                    wait(ctx)?;
+                    ms.push(t.elapsed().as_secs_f64() * 1e3);
+                }
             }
-            Ok(Times::of(ms))
+            Ok(ms.into_iter().map(Times::of).collect())
         }
     }
 }
@@ -175,6 +204,11 @@ fn gpu_rows(
     let mut refine = None;
     for scale in Scale::ALL {
         for (reconstruction, upsample, name) in MODES {
+            // The target's pair at 1/16 is timed together, below.
+            let paired = [Reconstruction::Planes, Reconstruction::Refine];
+            if scale == Scale::Sixteenth && paired.contains(&reconstruction) {
+                continue;
+            }
             r.set_options(RenderOptions {
                 scale,
                 reconstruction,
@@ -186,12 +220,60 @@ fn gpu_rows(
                 r.render_timed(enc, target.view(), ts)
             })?;
             rows.push(Row::new("reduced", scale.divisor(), name, ms));
-            if reconstruction == Reconstruction::Refine && scale == Scale::Sixteenth {
-                refine = Some(r.refine_stats()?);
-            }
+        }
+        if scale == Scale::Sixteenth {
+            let (planes, refined, stats) = sixteenth_pair(ctx, terrain, palette, camera, frames)?;
+            rows.push(Row::new("reduced", 16, "planes", planes));
+            rows.push(Row::new("reduced", 16, "refine", refined));
+            refine = Some(stats);
         }
     }
     Ok((rows, refine))
+}
+
+/// The 1/16 `planes` and `refine` frames, timed in turn (the target compares them), and
+/// what refine did.
+fn sixteenth_pair(
+    ctx: &GpuContext,
+    terrain: &Terrain<Graph>,
+    palette: &[[u8; 3]],
+    camera: &Camera,
+    frames: u32,
+) -> Result<(Times, Times, RefineStats), GpuError> {
+    let target = Offscreen::new(&ctx.device, camera.width, camera.height)?;
+    let renderer = |reconstruction| -> Result<TerrainRenderer, GpuError> {
+        let options = RenderOptions {
+            scale: Scale::Sixteenth,
+            reconstruction,
+            upsample: Upsample::BSpline,
+            ..RenderOptions::default()
+        };
+        let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options)?;
+        r.prepare(terrain, palette, camera)?;
+        Ok(r)
+    };
+    let (planes, refine) = (
+        renderer(Reconstruction::Planes)?,
+        renderer(Reconstruction::Refine)?,
+    );
+    let view = target.view();
+    let mut times = time_interleaved(
+        ctx,
+        frames,
+        &mut [
+            &mut |enc: &mut wgpu::CommandEncoder, ts: Timestamp<'_>| {
+                planes.render_timed(enc, view, ts)
+            },
+            &mut |enc: &mut wgpu::CommandEncoder, ts: Timestamp<'_>| {
+                refine.render_timed(enc, view, ts)
+            },
+        ],
+    )?
+    .into_iter();
+    let (Some(planes_t), Some(refine_t)) = (times.next(), times.next()) else {
+        return Err(GpuError::Unsupported("time two configurations".into()));
+    };
+    Ok((planes_t, refine_t, refine.refine_stats()?))
 }
 
 /// Median, p95, p99 and max of frame times.
@@ -221,15 +303,29 @@ impl Times {
 
 /// Times `frames` CPU frames of `render` after two warm-up frames.
 fn cpu_times(frames: u32, mut render: impl FnMut() -> Result<(), String>) -> Result<Times, String> {
-    let mut ms = Vec::new();
+    let mut times = cpu_times_interleaved(frames, &mut [&mut render])?;
+    Ok(times.remove(0))
+}
+
+/// A CPU frame renderer being timed.
+type CpuRender<'a> = dyn FnMut() -> Result<(), String> + 'a;
+
+/// [`cpu_times`] for several renderers, their frames taken in turn (see [`time_interleaved`]).
+fn cpu_times_interleaved(
+    frames: u32,
+    renders: &mut [&mut CpuRender<'_>],
+) -> Result<Vec<Times>, String> {
+    let mut ms = vec![Vec::new(); renders.len()];
     for i in 0..frames + 2 {
-        let t = Instant::now();
-        render()?;
-        if i >= 2 {
-            ms.push(t.elapsed().as_secs_f64() * 1e3);
+        for (render, ms) in renders.iter_mut().zip(&mut ms) {
+            let t = Instant::now();
+            render()?;
+            if i >= 2 {
+                ms.push(t.elapsed().as_secs_f64() * 1e3);
+            }
         }
     }
-    Ok(Times::of(ms))
+    Ok(ms.into_iter().map(Times::of).collect())
 }
 
 /// One CPU configuration's frame times.
@@ -260,22 +356,32 @@ fn cpu_rows(
         reconstruction: Reconstruction::Planes,
         ..RenderOptions::default()
     };
-    let planes_t = cpu_times(frames, || {
-        render_twin(terrain, palette, camera, &planes, 0)
-            .map(|_| ())
-            .map_err(err)
-    })?;
     let refine = RenderOptions {
         reconstruction: Reconstruction::Refine,
         ..RenderOptions::default()
     };
     let mut stats = RefineStats::default();
-    let refine_t = cpu_times(frames, || {
-        stats = render_refine(terrain, palette, camera, &refine, 0)
-            .map_err(err)?
-            .1;
-        Ok(())
-    })?;
+    // In turn, as on the GPU: the target compares these two.
+    let mut times = cpu_times_interleaved(
+        frames,
+        &mut [
+            &mut || {
+                render_twin(terrain, palette, camera, &planes, 0)
+                    .map(|_| ())
+                    .map_err(err)
+            },
+            &mut || {
+                stats = render_refine(terrain, palette, camera, &refine, 0)
+                    .map_err(err)?
+                    .1;
+                Ok(())
+            },
+        ],
+    )?
+    .into_iter();
+    let (Some(planes_t), Some(refine_t)) = (times.next(), times.next()) else {
+        return Err("time two configurations".into());
+    };
     let row = |pipeline, scale, mode, times| CpuRow {
         pipeline,
         scale,
@@ -305,8 +411,14 @@ pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let (cpu_rows, refine) = cpu_rows(&terrain, &palette, &camera, options.frames)?;
     let cpu_twin_ms = cpu_rows[1].times.median;
-    let (adapter, timing, (rows, gpu_refine)) = match GpuContext::new() {
-        Ok(ctx) => {
+    let context = (!options.cpu_only).then(GpuContext::new);
+    let (adapter, timing, (rows, gpu_refine)) = match context {
+        None => (
+            "not asked for (--cpu-only)".into(),
+            "none",
+            (Vec::new(), None),
+        ),
+        Some(Ok(ctx)) => {
             let timing = if ctx.timestamps {
                 "GPU timestamp queries"
             } else {
@@ -316,7 +428,7 @@ pub(crate) fn run(options: &Options) -> Result<ExitCode, String> {
                 .map_err(|e| e.to_string())?;
             (ctx.describe(), timing, rows)
         }
-        Err(e) => (format!("none ({e})"), "none", (Vec::new(), None)),
+        Some(Err(e)) => (format!("none ({e})"), "none", (Vec::new(), None)),
     };
     let report = Report {
         adapter,

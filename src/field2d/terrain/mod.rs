@@ -72,7 +72,7 @@ mod batch;
 pub(crate) mod grid;
 pub(crate) mod journal;
 mod proof;
-pub use proof::{CellBounds, RectSign};
+pub use proof::{CellBounds, EventDiscs, RectSign};
 mod cell_tapes;
 
 use std::collections::BTreeSet;

@@ -47,6 +47,32 @@ pub struct CellBounds {
     pub error: f32,
 }
 
+/// One cell's events at one tick, read once for many [`Terrain::rect_sign_of`] questions
+/// ([`Terrain::event_discs`]).
+#[derive(Clone, Debug)]
+pub struct EventDiscs {
+    cell: usize,
+    discs: Vec<Disc>,
+    start: Start,
+}
+
+/// One event as the sign proof reads it: centre, radius at the tick and rim, in `f64`.
+#[derive(Clone, Copy, Debug)]
+struct Disc {
+    center: [f64; 2],
+    radius: f64,
+    rim: f64,
+    carve: bool,
+}
+
+/// A cell's starting state as the sign proof bounds it: one range over the whole cell, or
+/// a brick whose range depends on the rectangle.
+#[derive(Clone, Copy, Debug)]
+enum Start {
+    Range(f32, f32),
+    Brick(u32),
+}
+
 /// What a cell's starting state and events force over a rectangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RectSign {
@@ -71,47 +97,96 @@ impl<F: Sdf> Terrain<F> {
     /// `docs/render2d-pipeline.md`), any other fill clears the proof. Symmetrically for
     /// `Below` with fills holding the rectangle and carves staying away. Distances are
     /// measured in `f64` with an allowance for the `f32` rounding of `|p - o| - r`.
+    ///
+    /// A caller asking about many rectangles of one cell reads the events once with
+    /// [`Terrain::event_discs`] and asks [`Terrain::rect_sign_of`].
     pub fn rect_sign(&self, cell: usize, min: Vec2, max: Vec2, above: f32, below: f32) -> RectSign {
-        let Some(c) = self.grid.cells.get(cell) else {
-            return RectSign::Unknown;
+        match self.event_discs(cell) {
+            Some(discs) => self.rect_sign_of(&discs, min, max, above, below),
+            None => RectSign::Unknown,
+        }
+    }
+
+    /// The events of cell `cell` at the terrain's tick as [`Terrain::rect_sign_of`] reads
+    /// them, in list order (events not yet in effect left out), and its starting state.
+    /// `None`: no such cell. Valid until the terrain changes.
+    pub fn event_discs(&self, cell: usize) -> Option<EventDiscs> {
+        let c = self.grid.cells.get(cell)?;
+        let discs = c
+            .events
+            .iter()
+            .filter_map(|&i| {
+                let e = self.events.get(i as usize)?;
+                let r = e.radius_at(self.tick)?;
+                let o = e.center_f32();
+                Some(Disc {
+                    center: [f64::from(o.x), f64::from(o.y)],
+                    radius: f64::from(r),
+                    rim: f64::from(e.rim_f32()),
+                    carve: e.kind == EventKind::Carve,
+                })
+            })
+            .collect();
+        let start = match c.state.0 {
+            CellState::Brick(id) => Start::Brick(id),
+            _ => {
+                let (lo, hi) = self.start_range(cell, Vec2::ZERO, Vec2::ZERO);
+                Start::Range(lo, hi)
+            }
         };
+        Some(EventDiscs { cell, discs, start })
+    }
+
+    /// [`Terrain::rect_sign`] over the events `discs` read of one cell.
+    pub fn rect_sign_of(
+        &self,
+        discs: &EventDiscs,
+        min: Vec2,
+        max: Vec2,
+        above: f32,
+        below: f32,
+    ) -> RectSign {
         let rect = [
             [f64::from(min.x), f64::from(min.y)],
             [f64::from(max.x), f64::from(max.y)],
         ];
         let slack = 1.0e-3 + 1.0e-6 * f64::from(min.abs().max(max.abs()).max_element());
         let (above64, below64) = (f64::from(above), f64::from(below));
+        let widest = above64.max(-below64) + slack;
         // Backwards: the last event that forces or breaks a sign decides it, and the
         // starting state decides what no event did.
         let (mut up, mut down) = (None, None);
-        for &i in c.events.iter().rev() {
+        for e in discs.discs.iter().rev() {
             if up.is_some() && down.is_some() {
                 break;
             }
-            let Some(e) = self.events.get(i as usize) else {
+            let (o, r, k) = (e.center, e.radius, e.rim);
+            // Most listed events stay away from a small rectangle: past `reach` an event
+            // neither forces nor breaks a sign (see below), which the squared distance
+            // decides without a square root. The bound is widened by a relative 1e-12 so
+            // that the rounding of the squares never skips an event the roots would keep;
+            // NaN compares false and takes the full test.
+            let reach = (r + widest + k) * (1.0 + 1.0e-12);
+            let near_squared = nearest_squared(o, rect);
+            if near_squared >= reach * reach {
                 continue;
-            };
-            let Some(r) = e.radius_at(self.tick) else {
-                continue;
-            };
-            let (r, k) = (f64::from(r), f64::from(e.rim_f32()));
-            let o = e.center_f32();
-            let o = [f64::from(o.x), f64::from(o.y)];
-            let (near, far) = (nearest(o, rect), farthest(o, rect));
+            }
+            let (near, far) = (near_squared.sqrt(), farthest(o, rect));
             // `Some(true)`: this event forces the sign, `Some(false)`: it breaks it.
-            let (for_up, for_down) = match e.kind {
+            let (for_up, for_down) = if e.carve {
                 // A carve holding the rectangle `above` deep forces `Above`; one reaching
                 // within `k` of `-below` breaks `Below`.
-                EventKind::Carve => (
+                (
                     (far <= r - above64 - slack).then_some(true),
                     short_of(near, r - below64 + k + slack).then_some(false),
-                ),
+                )
+            } else {
                 // A fill holding it `-below` deep forces `Below`; one reaching within
                 // `above + k` breaks `Above`.
-                EventKind::Fill => (
+                (
                     short_of(near, r + above64 + k + slack).then_some(false),
                     (far <= r + below64 - slack).then_some(true),
-                ),
+                )
             };
             up = up.or(for_up);
             down = down.or(for_down);
@@ -119,7 +194,14 @@ impl<F: Sdf> Terrain<F> {
         let (up, down) = match (up, down) {
             (Some(u), Some(d)) => (u, d),
             (u, d) => {
-                let (lo, hi) = self.start_range(cell, min, max);
+                let (lo, hi) = match discs.start {
+                    Start::Range(lo, hi) => (lo, hi),
+                    Start::Brick(id) => {
+                        let m = self.options.band;
+                        self.brick_range(discs.cell, id, min, max)
+                            .unwrap_or((-m, m))
+                    }
+                };
                 (u.unwrap_or(lo >= above), d.unwrap_or(hi <= below))
             }
         };
@@ -325,11 +407,11 @@ impl<F: Sdf> Terrain<F> {
     }
 }
 
-/// Distance from `o` to the nearest point of `rect`.
-fn nearest(o: [f64; 2], rect: [[f64; 2]; 2]) -> f64 {
+/// Squared distance from `o` to the nearest point of `rect`.
+fn nearest_squared(o: [f64; 2], rect: [[f64; 2]; 2]) -> f64 {
     let dx = (rect[0][0] - o[0]).max(o[0] - rect[1][0]).max(0.0);
     let dy = (rect[0][1] - o[1]).max(o[1] - rect[1][1]).max(0.0);
-    (dx * dx + dy * dy).sqrt()
+    dx * dx + dy * dy
 }
 
 /// Distance from `o` to the farthest point of `rect` (a corner).

@@ -488,6 +488,32 @@ pub(super) fn pixel_weights(layout: &Layout, x: usize, y: usize) -> [f32; 4] {
     bilinear_weights(layout.columns.frac[x], layout.rows.frac[y])
 }
 
+/// Splits `buf` (rows of `row_len` entries) into units of consecutive bands of `runs`, in
+/// order, each unit the fewest bands that hold at least `min_rows` pixel rows (the last
+/// may hold fewer).
+pub(super) fn split_row_groups<'r, 'b, T>(
+    runs: &'r [Run],
+    mut buf: &'b mut [T],
+    row_len: usize,
+    min_rows: usize,
+) -> Vec<(&'r [Run], &'b mut [T])> {
+    let mut out = Vec::new();
+    let mut first = 0;
+    while first < runs.len() {
+        let mut end = first;
+        let mut rows = 0;
+        while end < runs.len() && (end == first || rows < min_rows) {
+            rows += runs[end].pixels.len();
+            end += 1;
+        }
+        let (unit, rest) = std::mem::take(&mut buf).split_at_mut(rows * row_len);
+        out.push((&runs[first..end], unit));
+        buf = rest;
+        first = end;
+    }
+    out
+}
+
 /// Splits `buf` (rows of `row_len` entries) into the bands of `runs`, in order.
 pub(super) fn split_rows<'r, 'b, T>(
     runs: &'r [Run],

@@ -36,13 +36,13 @@ use glam::Vec2;
 use image::RgbaImage;
 use serde::Serialize;
 
-use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights, split_rows};
+use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights, split_row_groups};
 use super::shade::Shader;
 use super::threads::run_units;
 use super::upsample::{Textures, normal};
 use super::{FieldImage, LowRes, TwinError};
 use crate::field2d::Grid;
-use crate::field2d::terrain::RectSign;
+use crate::field2d::terrain::{EventDiscs, RectSign};
 use crate::field2d::{MaterialId, Sample, Sdf, Terrain};
 use crate::render2d::camera::Camera;
 use crate::render2d::lattice::Lattice;
@@ -53,6 +53,9 @@ pub const BLOCK: usize = 4;
 
 /// Most pixels evaluated per batch call.
 const BATCH: usize = 4096;
+
+/// Pixel rows of one unit of work at least (see [`Refiner::band`]).
+const UNIT_ROWS: usize = 32;
 
 /// What the `refine` mode did for one frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -140,6 +143,8 @@ pub(super) struct Prover<'a, F: Sdf> {
     lazy_margins: Vec<OnceLock<f32>>,
     lattice: Lattice,
     cells: Vec<OnceLock<CellInfo>>,
+    /// Each cell's events for the sign proofs, read on first use.
+    discs: Vec<OnceLock<Option<EventDiscs>>>,
     /// The bounds of points outside the grid (the clamped base, exact).
     outside: CellInfo,
     upp: f32,
@@ -164,6 +169,9 @@ impl<'a, F: Sdf> Prover<'a, F> {
             lazy_margins: (0..lowres.texels.len()).map(|_| OnceLock::new()).collect(),
             lattice: lowres.lattice,
             cells: (0..nx as usize * ny as usize)
+                .map(|_| OnceLock::new())
+                .collect(),
+            discs: (0..nx as usize * ny as usize)
                 .map(|_| OnceLock::new())
                 .collect(),
             outside: CellInfo {
@@ -224,6 +232,14 @@ impl<'a, F: Sdf> Prover<'a, F> {
         })
     }
 
+    /// The events of cell `cell` as the sign proof reads them, read once per frame.
+    fn discs(&self, cell: usize) -> Option<&EventDiscs> {
+        self.discs
+            .get(cell)?
+            .get_or_init(|| self.terrain.event_discs(cell))
+            .as_ref()
+    }
+
     /// Cell coordinate along axis `axis` of world coordinate `v` (not clamped to the grid).
     fn cell_coord(&self, v: f32, axis: usize) -> i64 {
         ((f64::from(v) - self.origin[axis]) / self.cell_size).floor() as i64
@@ -273,18 +289,10 @@ impl<'a, F: Sdf> Prover<'a, F> {
         if self.exact_only || !(bounds.lipschitz.is_finite() && bounds.jump.is_finite()) {
             return Class::Uncertain;
         }
-        let [x0, y0, x1, y1] = rect;
-        let corners = [
-            Vec2::new(x0, y0),
-            Vec2::new(x1, y0),
-            Vec2::new(x0, y1),
-            Vec2::new(x1, y1),
-        ];
         let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
         let mut far = [0.0f32; 4];
         for (k, far_k) in far.iter_mut().enumerate() {
-            let c = quad.centers[k];
-            *far_k = corners.iter().map(|&p| p.distance(c)).fold(0.0, f32::max);
+            *far_k = farthest_corner(quad.centers[k], rect);
             let d = quad.d[k];
             let reach = bounds.lipschitz * *far_k * (1.0 + 1.0e-5)
                 + bounds.jump
@@ -337,9 +345,13 @@ impl<'a, F: Sdf> Prover<'a, F> {
         for iy in iy0..=iy1 {
             for ix in ix0..=ix1 {
                 let cell = (iy * self.dims[0] + ix) as usize;
-                let sign = self
-                    .terrain
-                    .rect_sign(cell, min, max, self.sky_at, self.solid_at);
+                let sign = match self.discs(cell) {
+                    Some(discs) => {
+                        self.terrain
+                            .rect_sign_of(discs, min, max, self.sky_at, self.solid_at)
+                    }
+                    None => RectSign::Unknown,
+                };
                 match (sign, agreed) {
                     (RectSign::Unknown, _) => return RectSign::Unknown,
                     (s, Some(a)) if s != a => return RectSign::Unknown,
@@ -410,6 +422,16 @@ impl<'a, F: Sdf> Prover<'a, F> {
     }
 }
 
+/// The distance from `c` to the farthest corner of `rect` (`[x0, y0, x1, y1]`): the corner
+/// with the larger offset on each axis, whose rounded distance is also the largest of the
+/// four corners' rounded distances (squares and sums round monotonically).
+fn farthest_corner(c: Vec2, rect: [f32; 4]) -> f32 {
+    let [x0, y0, x1, y1] = rect;
+    let dx = (x0 - c.x).abs().max((x1 - c.x).abs());
+    let dy = (y0 - c.y).abs().max((y1 - c.y).abs());
+    (dx * dx + dy * dy).sqrt()
+}
+
 /// The event sign of a whole quad, computed once the first block needs it.
 type QuadSign = Option<RectSign>;
 
@@ -452,6 +474,12 @@ impl Quad {
 trait Sink {
     /// Whether proven-sky pixels need their interpolated distance (field images do).
     const SKY_VALUES: bool;
+    /// Whether pixels of solid blocks proven deeper than the interior depth need their
+    /// interpolated distance and normal ([`Sink::proven`]); without, [`Sink::deep`].
+    const DEEP_VALUES: bool;
+    /// Pixels `xs` of row `yi`, proven solid of `material` and deeper than the interior
+    /// depth (only called where `DEEP_VALUES` is false).
+    fn deep(&mut self, xs: Range<usize>, yi: usize, material: MaterialId);
     /// A proven pixel: its distance (world units), normal and material.
     fn proven(&mut self, x: usize, yi: usize, d: f32, n: Vec2, material: MaterialId);
     /// A pixel evaluated exactly.
@@ -463,6 +491,11 @@ trait Sink {
 struct RefineScratch {
     blocks: Scratch,
     classes: Vec<Class>,
+    /// The pixel columns of each block of the current quad.
+    col_blocks: Vec<Range<usize>>,
+    tally: Tally,
+    /// The first image row of the unit being drawn: sink rows count from it.
+    base: usize,
     points: Vec<Vec2>,
     pixels: Vec<(usize, usize)>,
     samples: Vec<Sample>,
@@ -475,7 +508,7 @@ struct RefineScratch {
 /// A solid block shaded from the exact samples at its four corner pixels.
 struct Deferred {
     xs: Range<usize>,
-    /// Band-relative rows.
+    /// Rows relative to the unit's first.
     rows: Range<usize>,
     /// The first image row.
     y0: usize,
@@ -483,6 +516,16 @@ struct Deferred {
     material: Material,
     /// Index of its first corner in `RefineScratch::corners`.
     first: usize,
+}
+
+/// Class counts of one thread's band, added to [`Counters`] when the band is done.
+#[derive(Clone, Copy, Default)]
+struct Tally {
+    blocks: u64,
+    sky: u64,
+    solid: u64,
+    refined: u64,
+    refined_pixels: u64,
 }
 
 /// Class counts, summed over threads.
@@ -525,26 +568,33 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         }
     }
 
-    /// Classifies and draws the band of image rows `rows.pixels` (quad row `rows.cell`).
+    /// Classifies and draws the consecutive quad rows `bands` (one unit of work). The exact
+    /// evaluations of the whole unit go to the batch evaluator together: a quad row alone
+    /// holds a few uncertain pixels per grid cell, too few to fill the SIMD lanes of one
+    /// cell's pass.
     fn band<S: Sink>(
         &self,
         scratch: &mut RefineScratch,
-        rows: &Run,
+        bands: &[Run],
         sink: &mut S,
     ) -> Result<(), TwinError> {
         scratch.points.clear();
         scratch.pixels.clear();
         scratch.deferred.clear();
         scratch.corners.clear();
-        for columns in &self.layout.columns.runs {
-            let block = Block {
-                c: columns.cell,
-                r: rows.cell,
-                xs: columns.pixels.clone(),
-                ys: rows.pixels.clone(),
-            };
-            self.quad(scratch, block, sink);
+        scratch.base = bands.first().map_or(0, |b| b.pixels.start);
+        for rows in bands {
+            for columns in &self.layout.columns.runs {
+                let block = Block {
+                    c: columns.cell,
+                    r: rows.cell,
+                    xs: columns.pixels.clone(),
+                    ys: rows.pixels.clone(),
+                };
+                self.quad(scratch, block, sink);
+            }
         }
+        self.flush(&mut scratch.tally);
         self.draw_deferred(scratch, sink)?;
         self.evaluate(scratch, sink)
     }
@@ -555,9 +605,14 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         let quad = Quad::new(self.tex, block.c, block.r);
         let bounds = self.prover.quad_bounds(&quad);
         let (xs, ys) = (block.xs.clone(), block.ys.clone());
-        let col_blocks: Vec<Range<usize>> = chunks(xs.clone()).collect();
+        let mut col_blocks = std::mem::take(&mut scratch.col_blocks);
+        col_blocks.clear();
+        col_blocks.extend(chunks(xs.clone()));
         scratch.classes.clear();
-        let mut quad_sign = None;
+        // A quad of one block proves its signs over the block alone: the quad-wide sign
+        // would walk the same events over nearly the same rectangle first.
+        let single = col_blocks.len() == 1 && ys.len() <= BLOCK;
+        let mut quad_sign = single.then_some(RectSign::Unknown);
         for by in chunks(ys.clone()) {
             let (ya, yb) = (layout.rows.world[by.start], layout.rows.world[by.end - 1]);
             for bx in &col_blocks {
@@ -571,10 +626,10 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
                     .push(self.prover.classify(&quad, bounds, rect, &mut quad_sign));
             }
         }
-        self.count(&scratch.classes, &col_blocks, ys.len());
+        Self::count(&mut scratch.tally, &scratch.classes, &col_blocks, ys.len());
         let interpolated = |c: &Class| match c {
             Class::Sky { .. } => S::SKY_VALUES,
-            Class::Solid { shaded, .. } => !shaded,
+            Class::Solid { shaded, .. } => !shaded && S::DEEP_VALUES,
             Class::Uncertain => false,
         };
         let kernel = Kernel::new(self.tex, block);
@@ -583,12 +638,33 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         }
         let per_row = col_blocks.len();
         let classes = std::mem::take(&mut scratch.classes);
-        for (yi, y) in ys.clone().enumerate() {
-            let row = (yi / BLOCK) * per_row..(yi / BLOCK + 1) * per_row;
+        for (local, y) in ys.clone().enumerate() {
+            let row = (local / BLOCK) * per_row..(local / BLOCK + 1) * per_row;
+            // The sink's row: rows count from the first of the unit.
+            let yi = y - scratch.base;
             if classes[row.clone()].iter().any(interpolated) {
                 kernel.row(layout, y, &mut scratch.blocks);
             }
             for (bx, &class) in col_blocks.iter().zip(&classes[row]) {
+                // Sky of an image is already filled, and shaded solid blocks are drawn
+                // later from their corners: no pixel of theirs to visit here.
+                let visit = match class {
+                    Class::Sky { .. } => S::SKY_VALUES,
+                    Class::Solid { shaded, .. } => !shaded,
+                    Class::Uncertain => true,
+                };
+                if !visit {
+                    continue;
+                }
+                if let Class::Solid {
+                    material: Material::One(m),
+                    ..
+                } = class
+                    && !S::DEEP_VALUES
+                {
+                    sink.deep(bx.clone(), yi, m);
+                    continue;
+                }
                 for x in bx.clone() {
                     let i = x - xs.start;
                     let p = Vec2::new(layout.columns.world[x], layout.rows.world[y]);
@@ -600,6 +676,12 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
                         }
                         Class::Sky { .. } => {}
                         Class::Solid { shaded: true, .. } => {}
+                        Class::Solid { material, .. } if !S::DEEP_VALUES => {
+                            match self.prover.pixel_material(material, p) {
+                                Some(m) => sink.deep(x..x + 1, yi, m),
+                                None => queue(scratch, p, x, yi),
+                            }
+                        }
                         Class::Solid { hi, material, .. } => {
                             match self.prover.pixel_material(material, p) {
                                 Some(m) => {
@@ -617,6 +699,7 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         }
         self.defer(scratch, &classes, &col_blocks, &ys);
         scratch.classes = classes;
+        scratch.col_blocks = col_blocks;
     }
 
     /// Queues the shaded solid blocks of a quad and the corner points they are drawn from.
@@ -650,7 +733,7 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
             }
             scratch.deferred.push(Deferred {
                 xs,
-                rows: rows_abs.start - ys.start..rows_abs.end - ys.start,
+                rows: rows_abs.start - scratch.base..rows_abs.end - scratch.base,
                 y0: rows_abs.start,
                 hi,
                 material,
@@ -715,24 +798,37 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         Ok(())
     }
 
-    fn count(&self, classes: &[Class], col_blocks: &[Range<usize>], rows: usize) {
-        let c = &self.counters;
-        let row_blocks: Vec<usize> = chunks(0..rows).map(|r| r.len()).collect();
-        let mut pixels = 0u64;
+    /// Tallies the classes of one quad's blocks into the thread's counts.
+    fn count(tally: &mut Tally, classes: &[Class], col_blocks: &[Range<usize>], rows: usize) {
         for (i, class) in classes.iter().enumerate() {
             let (bx, by) = (i % col_blocks.len(), i / col_blocks.len());
-            let counter = match class {
-                Class::Sky { .. } => &c.sky,
-                Class::Solid { .. } => &c.solid,
+            match class {
+                Class::Sky { .. } => tally.sky += 1,
+                Class::Solid { .. } => tally.solid += 1,
                 Class::Uncertain => {
-                    pixels += (col_blocks[bx].len() * row_blocks[by]) as u64;
-                    &c.refined
+                    let block_rows = (rows - by * BLOCK).min(BLOCK);
+                    tally.refined_pixels += (col_blocks[bx].len() * block_rows) as u64;
+                    tally.refined += 1;
                 }
-            };
-            counter.fetch_add(1, Ordering::Relaxed);
+            }
         }
-        c.blocks.fetch_add(classes.len() as u64, Ordering::Relaxed);
-        c.refined_pixels.fetch_add(pixels, Ordering::Relaxed);
+        tally.blocks += classes.len() as u64;
+    }
+
+    /// Adds a band's tally to the frame's counters (once per band: per-block atomics
+    /// would bounce one cache line between the threads).
+    fn flush(&self, tally: &mut Tally) {
+        let c = &self.counters;
+        let t = std::mem::take(tally);
+        for (counter, n) in [
+            (&c.blocks, t.blocks),
+            (&c.sky, t.sky),
+            (&c.solid, t.solid),
+            (&c.refined, t.refined),
+            (&c.refined_pixels, t.refined_pixels),
+        ] {
+            counter.fetch_add(n, Ordering::Relaxed);
+        }
     }
 
     /// Samples the queued pixels exactly and hands them to the sink.
@@ -800,6 +896,10 @@ struct ImageSink<'a> {
     upp: f32,
     /// Tint refined pixels (the overlay of [`super::render_refine_overlay`]).
     tint: bool,
+    /// A distance past the interior depth (world units): the shade of proven deep pixels.
+    deep_at: f32,
+    /// The last deep colour computed: its band row, material and colour.
+    deep_color: Option<(usize, MaterialId, [u8; 3])>,
 }
 
 impl ImageSink<'_> {
@@ -817,6 +917,23 @@ impl ImageSink<'_> {
 
 impl Sink for ImageSink<'_> {
     const SKY_VALUES: bool = false;
+    const DEEP_VALUES: bool = false;
+
+    fn deep(&mut self, xs: Range<usize>, yi: usize, material: MaterialId) {
+        let rgb = match self.deep_color {
+            Some((row, m, rgb)) if row == yi && m == material => rgb,
+            _ => {
+                // Past the interior depth the colour depends on the row and material only.
+                let rgb = self.shade(yi, self.deep_at, Vec2::ZERO, material);
+                self.deep_color = Some((yi, material, rgb));
+                rgb
+            }
+        };
+        let row = yi * self.width;
+        for px in self.bytes[(row + xs.start) * 4..(row + xs.end) * 4].chunks_exact_mut(4) {
+            px.copy_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
+        }
+    }
 
     fn proven(&mut self, x: usize, yi: usize, d: f32, n: Vec2, material: MaterialId) {
         let rgb = self.shade(yi, d, n, material);
@@ -849,6 +966,11 @@ struct FieldSink<'a> {
 
 impl Sink for FieldSink<'_> {
     const SKY_VALUES: bool = true;
+    const DEEP_VALUES: bool = true;
+
+    fn deep(&mut self, _: Range<usize>, _: usize, _: MaterialId) {
+        unreachable!("field images take the interpolated values of deep pixels")
+    }
 
     fn proven(&mut self, x: usize, yi: usize, d: f32, n: Vec2, material: MaterialId) {
         let i = yi * self.width + x;
@@ -882,21 +1004,24 @@ pub(super) fn render_refined<F: Sdf + Sync>(
     let shader = Shader::new(shade, camera.height);
     let width = camera.width as usize;
     let mut image = RgbaImage::new(camera.width, camera.height);
-    let units = split_rows(&layout.rows.runs, &mut image, width * 4);
+    let units = split_row_groups(&layout.rows.runs, &mut image, width * 4, UNIT_ROWS);
     run_units(
         units,
         threads,
         RefineScratch::default,
         |scratch, (rows, bytes)| {
-            fill_sky(&shader, bytes, width, rows.pixels.start);
+            let y0 = rows.first().map_or(0, |r| r.pixels.start);
+            fill_sky(&shader, bytes, width, y0);
             let mut sink = ImageSink {
                 bytes,
                 width,
-                y0: rows.pixels.start,
+                y0,
                 shader: &shader,
                 palette,
                 upp: camera.units_per_pixel,
                 tint,
+                deep_at: refiner.prover.deep_at,
+                deep_color: None,
             };
             refiner.band(scratch, rows, &mut sink)
         },
@@ -930,10 +1055,15 @@ pub(super) fn field_refined<F: Sdf + Sync>(
         material: vec![0; pixels],
     };
     let runs = &layout.rows.runs;
-    let units: Vec<_> = split_rows(runs, &mut field.distance_px, width)
+    let units: Vec<_> = split_row_groups(runs, &mut field.distance_px, width, UNIT_ROWS)
         .into_iter()
-        .zip(split_rows(runs, &mut field.normal, width))
-        .zip(split_rows(runs, &mut field.material, width))
+        .zip(split_row_groups(runs, &mut field.normal, width, UNIT_ROWS))
+        .zip(split_row_groups(
+            runs,
+            &mut field.material,
+            width,
+            UNIT_ROWS,
+        ))
         .map(|(((rows, d), (_, n)), (_, m))| (rows, d, n, m))
         .collect();
     run_units(
