@@ -137,9 +137,48 @@ fn finish_block(id: vec2<u32>, dims: vec2<u32>) {
 // The exact pass's workgroup counts, as a 2D grid when one dimension cannot hold them.
 @compute @workgroup_size(1)
 fn cs_args() {
-    let groups = (atomicLoad(&work.exact_blocks) + EXACT_BLOCKS_PER_GROUP - 1u)
-        / EXACT_BLOCKS_PER_GROUP;
-    let x = min(groups, MAX_GROUPS_PER_DIM);
-    let y = select(1u, (groups + x - 1u) / x, x > 0u);
-    work.dispatch = array<u32, 3>(x, y, 1u);
+    work.dispatch = group_grid(atomicLoad(&work.exact_blocks), EXACT_BLOCKS_PER_GROUP);
+}
+
+fn is_open(bx: i32, by: i32, dims: vec2<u32>) -> bool {
+    if bx < 0 || by < 0 || bx >= i32(dims.x) || by >= i32(dims.y) {
+        return false;
+    }
+    return blocks[u32(by) * dims.x + u32(bx)].kind == CLASS_NEED;
+}
+
+// The corners block (x, y) samples for level 1: a corner goes to the first open block of
+// its four in the order (i, j), (i - 1, j), (i, j - 1), (i - 1, j - 1), so each is sampled
+// once.
+fn owned_corners(x: i32, y: i32, dims: vec2<u32>) -> u32 {
+    let right = is_open(x + 1, y, dims);
+    let below = is_open(x, y + 1, dims) || is_open(x - 1, y + 1, dims);
+    let diagonal = is_open(x + 1, y + 1, dims) || is_open(x, y + 1, dims) || right;
+    return 1u | select(2u, 0u, right) | select(4u, 0u, below) | select(8u, 0u, diagonal);
+}
+
+// Lists the blocks left open after the event signs, with the corners each samples, so that
+// `cs_corners` evaluates the field only where level 1 needs it, every invocation busy.
+@compute @workgroup_size(8, 8)
+fn cs_open(@builtin(global_invocation_id) id: vec3<u32>) {
+    let dims = block_dims();
+    if id.x >= dims.x || id.y >= dims.y {
+        return;
+    }
+    let index = id.y * dims.x + id.x;
+    if blocks[index].kind != CLASS_NEED {
+        return;
+    }
+    let mask = owned_corners(i32(id.x), i32(id.y), dims);
+    let slot = atomicAdd(&work.open_blocks, 1u);
+    exact_list[slot + 1u] = index | (mask << OPEN_INDEX_BITS);
+    atomicAdd(&work.counters[COUNT_CORNERS], countOneBits(mask));
+}
+
+// The corner pass's workgroup counts; the list's count goes to its word 0.
+@compute @workgroup_size(1)
+fn cs_corner_args() {
+    let open = atomicLoad(&work.open_blocks);
+    work.corner_dispatch = group_grid(open, OPEN_BLOCKS_PER_GROUP);
+    exact_list[0] = open;
 }

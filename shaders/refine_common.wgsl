@@ -46,11 +46,37 @@ const SIGN_BELOW_SOLID: u32 = 2u;
 const SIGN_BELOW_DEEP: u32 = 4u;
 
 // The indirect dispatch of the exact pass (workgroups x, y, z, written by `cs_args`), the
-// number of blocks in the exact list, then the frame's counters.
+// number of blocks in the exact list, the frame's counters, then the indirect dispatch of
+// the corner samples (written by `cs_corner_args`) and the number of open blocks listed
+// for them.
 struct Work {
     dispatch: array<u32, 3>,
     exact_blocks: atomic<u32>,
     counters: array<atomic<u32>, 8>,
+    corner_dispatch: array<u32, 3>,
+    open_blocks: atomic<u32>,
+}
+
+// The open-block list `cs_open` writes for `cs_corners` (in the exact list's buffer, before
+// `cs_blocks` reuses it): word 0 the count, then one entry per open block, its index in the
+// low OPEN_INDEX_BITS bits and above them the mask of the corners it samples (bit k: corner
+// k of `block_corner`), each corner of an open block sampled by exactly one of them.
+const OPEN_INDEX_BITS: u32 = 28u;
+// Open blocks per workgroup of `cs_corners` (four invocations each, one per corner).
+const OPEN_BLOCKS_PER_GROUP: u32 = 16u;
+
+// Corner k (0: top left, 1: top right, 2: bottom left, 3: bottom right) of block b.
+fn block_corner(b: vec2<u32>, k: u32) -> vec2<u32> {
+    return b + vec2<u32>(k & 1u, k >> 1u);
+}
+
+// Workgroups for `n` items, `per_group` a workgroup, as a 2D grid when one dimension cannot
+// hold them.
+fn group_grid(n: u32, per_group: u32) -> array<u32, 3> {
+    let groups = (n + per_group - 1u) / per_group;
+    let x = min(groups, MAX_GROUPS_PER_DIM);
+    let y = select(1u, (groups + x - 1u) / x, x > 0u);
+    return array<u32, 3>(x, y, 1u);
 }
 
 // Exact blocks per workgroup of the exact pass (BLOCK * BLOCK pixels each).

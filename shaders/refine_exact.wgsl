@@ -9,6 +9,8 @@ struct WorkCounts {
     dispatch: array<u32, 3>,
     exact_blocks: u32,
     counters: array<u32, 8>,
+    corner_dispatch: array<u32, 3>,
+    open_blocks: u32,
 }
 
 @group(0) @binding(6) var<uniform> palette: Palette;

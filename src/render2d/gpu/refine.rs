@@ -2,11 +2,12 @@
 //! per-cell proof data mirrored from the terrain, the block, corner, work and exact-list
 //! buffers of one frame size, and the passes that use them.
 //!
-//! After pass 1, one compute pass runs six dispatches: `cs_classify` (level 0: every
+//! After pass 1, one compute pass runs eight dispatches: `cs_classify` (level 0: every
 //! `4 x 4` pixel block bounded from the texels around it), `cs_signs` (what the events of
 //! the cells an open block touches force over it: sky and deep solid decided there, the
-//! "solid" bound kept for level 1), `cs_corners` (exact samples at the corners of the blocks
-//! still open) and `cs_blocks` (level 1: those blocks bounded from their corner samples and
+//! "solid" bound kept for level 1), `cs_open` (the blocks still open listed, each with the
+//! corners it samples), `cs_corner_args` and `cs_corners` (exact samples at those corners,
+//! an indirect dispatch over the list, so no invocation idles) and `cs_blocks` (level 1: those blocks bounded from their corner samples and
 //! signs; the ones still open are appended to a list with an atomic counter); `cs_args`
 //! turns the count into the workgroups of an indirect dispatch of `cs_exact`, which
 //! evaluates and shades every pixel of the listed blocks as the direct pass does and stores
@@ -15,18 +16,22 @@
 
 use super::GpuError;
 use super::grid_mirror::buffer_with;
-use super::uniforms::{GpuBlockState, GpuCellProof, GpuWork};
+use super::uniforms::{CORNER_DISPATCH_OFFSET, GpuBlockState, GpuCellProof, GpuWork, WORK_BYTES};
 use crate::field2d::sdf::Sdf;
 use crate::field2d::terrain::Terrain;
 use crate::gpu::map_read;
 use crate::render2d::twin::{REFINE_BLOCK as BLOCK, RefineStats};
 
-/// Storage buffers one stage of the refine passes binds at most (`cs_corners`: the four of
-/// the field, blocks, corners and work; `cs_exact`: the field's, list, work and colours).
+/// Storage buffers one stage of the refine passes binds at most (`cs_exact`: the four of the
+/// field, the list, work and colours; `cs_signs`: the field's, proofs and blocks).
 pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 7;
 
 /// Bytes of one cell proof record.
 const RECORD: u64 = std::mem::size_of::<GpuCellProof>() as u64;
+
+/// Bits of a block index in the open-block list (`OPEN_INDEX_BITS` of
+/// `shaders/refine_common.wgsl`; the corner mask sits above them).
+const OPEN_INDEX_BITS: u32 = 28;
 
 /// Workgroup side of the refine compute entry points (`@workgroup_size(8, 8)`).
 const WORKGROUP: u32 = 8;
@@ -157,11 +162,17 @@ impl RefineTargets {
         let state_bytes = std::mem::size_of::<GpuBlockState>() as u64;
         let corners = u64::from(dims.0 + 1) * u64::from(dims.1 + 1);
         let limit = device.limits().max_storage_buffer_binding_size;
+        if blocks >= 1 << OPEN_INDEX_BITS {
+            return Err(GpuError::Unsupported(format!(
+                "draw refine at {width}x{height}: its block list holds at most 2^28 blocks"
+            )));
+        }
         let pixels_per_block = (BLOCK * BLOCK) as u64;
         for (what, bytes) in [
             ("refine block states", blocks * state_bytes),
             ("refine corner samples", corners * 16),
             ("refine exact colours", blocks * pixels_per_block * 8),
+            ("refine block list", (blocks + 1) * 4),
         ] {
             if bytes > limit {
                 return Err(GpuError::LimitsTooLow {
@@ -186,8 +197,9 @@ impl RefineTargets {
         Ok(RefineTargets {
             blocks: storage("craterfield refine blocks", blocks * state_bytes, none),
             corners: storage("craterfield refine corners", corners * 16, none),
-            work: storage("craterfield refine work", 48, work_usage),
-            list: storage("craterfield refine exact list", blocks * 4, none),
+            work: storage("craterfield refine work", WORK_BYTES, work_usage),
+            // The open-block list (a count, then the blocks), then the exact list.
+            list: storage("craterfield refine block list", (blocks + 1) * 4, none),
             colors: storage(
                 "craterfield refine exact colours",
                 blocks * pixels_per_block * 8,
@@ -201,7 +213,7 @@ impl RefineTargets {
             ),
             readback: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("craterfield refine counters readback"),
-                size: 48,
+                size: WORK_BYTES,
                 usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
@@ -217,7 +229,7 @@ impl RefineTargets {
     /// Resets the exact list and the counters, then records the six dispatches (see the
     /// module doc).
     pub(crate) fn encode(&self, encoder: &mut wgpu::CommandEncoder, passes: ClassifyPasses<'_>) {
-        encoder.copy_buffer_to_buffer(&self.work_start, 0, &self.work, 0, 48);
+        encoder.copy_buffer_to_buffer(&self.work_start, 0, &self.work, 0, WORK_BYTES);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("craterfield refine classify"),
             timestamp_writes: None,
@@ -231,9 +243,15 @@ impl RefineTargets {
         pass.set_bind_group(0, passes.field_bind, &[]);
         pass.set_bind_group(1, passes.signs_bind, &[]);
         pass.dispatch_workgroups(groups(bx), groups(by), 1);
+        pass.set_pipeline(passes.open);
+        pass.set_bind_group(0, passes.classify_bind, &[]);
+        pass.dispatch_workgroups(groups(bx), groups(by), 1);
+        pass.set_pipeline(passes.corner_args);
+        pass.dispatch_workgroups(1, 1, 1);
         pass.set_pipeline(passes.corners);
+        pass.set_bind_group(0, passes.field_bind, &[]);
         pass.set_bind_group(1, passes.corners_bind, &[]);
-        pass.dispatch_workgroups(groups(bx + 1), groups(by + 1), 1);
+        pass.dispatch_workgroups_indirect(&self.work, CORNER_DISPATCH_OFFSET);
         pass.set_pipeline(passes.blocks);
         pass.set_bind_group(0, passes.classify_bind, &[]);
         pass.dispatch_workgroups(groups(bx), groups(by), 1);
@@ -256,10 +274,10 @@ impl RefineTargets {
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("craterfield refine counters"),
         });
-        encoder.copy_buffer_to_buffer(&self.work, 0, &self.readback, 0, 48);
+        encoder.copy_buffer_to_buffer(&self.work, 0, &self.readback, 0, WORK_BYTES);
         queue.submit([encoder.finish()]);
         let work: GpuWork = map_read(device, &self.readback, |bytes| {
-            bytemuck::pod_read_unaligned(&bytes[..48])
+            bytemuck::pod_read_unaligned(&bytes[..WORK_BYTES as usize])
         })?;
         Ok(stats_of(&work, texels, pixels))
     }
@@ -268,6 +286,8 @@ impl RefineTargets {
 /// The pipelines and bind groups [`RefineTargets::encode`] records.
 pub(crate) struct ClassifyPasses<'a> {
     pub(crate) classify: &'a wgpu::ComputePipeline,
+    pub(crate) open: &'a wgpu::ComputePipeline,
+    pub(crate) corner_args: &'a wgpu::ComputePipeline,
     pub(crate) corners: &'a wgpu::ComputePipeline,
     pub(crate) blocks: &'a wgpu::ComputePipeline,
     pub(crate) signs: &'a wgpu::ComputePipeline,

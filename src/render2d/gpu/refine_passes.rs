@@ -30,6 +30,8 @@ pub(super) struct RefineFieldPipelines {
 /// The refine passes that do not depend on the level.
 pub(super) struct RefinePipelines {
     pub(super) classify: wgpu::ComputePipeline,
+    pub(super) open: wgpu::ComputePipeline,
+    pub(super) corner_args: wgpu::ComputePipeline,
     pub(super) blocks: wgpu::ComputePipeline,
     pub(super) args: wgpu::ComputePipeline,
     pub(super) draw: wgpu::RenderPipeline,
@@ -79,11 +81,7 @@ impl RefineLayouts {
             corners: layout(
                 device,
                 "craterfield refine corners",
-                &[
-                    buffer_entry(0, compute, true),
-                    buffer_entry(1, compute, false),
-                    buffer_entry(2, compute, false),
-                ],
+                &[buffer_entry(0, compute, true), buffer_entry(1, compute, false)],
             ),
             signs: layout(
                 device,
@@ -132,6 +130,20 @@ impl RefinePipelines {
                 "craterfield refine classify",
                 &classify_src,
                 "cs_classify",
+                &[&l.classify],
+            )?,
+            open: compute_pipeline(
+                device,
+                "craterfield refine classify",
+                &classify_src,
+                "cs_open",
+                &[&l.classify],
+            )?,
+            corner_args: compute_pipeline(
+                device,
+                "craterfield refine classify",
+                &classify_src,
+                "cs_corner_args",
                 &[&l.classify],
             )?,
             blocks: compute_pipeline(
@@ -232,11 +244,7 @@ impl RefineBinds {
             corners: group(
                 "craterfield refine corners",
                 &l.corners,
-                &[
-                    buffer(0, &t.blocks),
-                    buffer(1, &t.corners),
-                    buffer(2, &t.work),
-                ],
+                &[buffer(0, &t.list), buffer(1, &t.corners)],
             ),
             signs: group(
                 "craterfield refine signs",

@@ -671,6 +671,8 @@ impl TerrainRenderer {
             encoder,
             ClassifyPasses {
                 classify: &shared.classify,
+                open: &shared.open,
+                corner_args: &shared.corner_args,
                 corners: &own.corners,
                 blocks: &shared.blocks,
                 signs: &own.signs,

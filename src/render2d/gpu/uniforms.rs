@@ -296,9 +296,22 @@ pub(crate) struct GpuWork {
     pub exact_blocks: u32,
     /// `COUNT_*` slots of `refine_common.wgsl`.
     pub counters: [u32; 8],
+    /// Workgroups of the corner pass (written on the GPU by `cs_corner_args`).
+    pub corner_dispatch: [u32; 3],
+    /// Open blocks listed for the corner pass.
+    pub open_blocks: u32,
 }
 
-const _: () = assert!(std::mem::size_of::<GpuWork>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuWork>() == WORK_BYTES as usize);
+
+/// Bytes of [`GpuWork`].
+pub(crate) const WORK_BYTES: u64 = 64;
+
+/// Offset of [`GpuWork::corner_dispatch`], the corner pass's indirect arguments.
+pub(crate) const CORNER_DISPATCH_OFFSET: u64 = 48;
+
+const _: () =
+    assert!(std::mem::offset_of!(GpuWork, corner_dispatch) == CORNER_DISPATCH_OFFSET as usize);
 
 impl GpuWork {
     /// What the frame starts from: nothing listed, counters at zero.
