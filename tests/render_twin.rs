@@ -473,6 +473,15 @@ fn bad_input_is_an_error_not_a_panic() {
 
     let lattice = Lattice::new(&cam, Scale::Sixteenth).unwrap();
     let mut low = sdf_pass(&terrain, &lattice, 0).unwrap();
+    // Pass 3 alone cannot draw the default mode, refine: it evaluates the field.
+    assert_eq!(
+        render_lowres(&low, &pal, &cam, &opts, 0).unwrap_err(),
+        TwinError::NeedsField
+    );
+    let opts = RenderOptions {
+        reconstruction: Reconstruction::Planes,
+        ..opts
+    };
     // No pair values yet: mode planes cannot run pass 3.
     assert_eq!(
         render_lowres(&low, &pal, &cam, &opts, 0).unwrap_err(),

@@ -59,15 +59,15 @@ pub enum Reconstruction {
     /// Tangent planes: every texel's distance and gradient give the plane
     /// `d_i + g_i . (p - c_i)`; per pixel, planes of texels whose gradients diverge are
     /// combined by `max`, converging ones by `min`, and the results blended. Keeps thin
-    /// solids and thin gaps at their true width. The default.
-    #[default]
+    /// solids and thin gaps at their true width.
     Planes,
     /// Proven exact: the `planes` texels, and a proof per 4x4 pixel block from the field's
     /// Lipschitz bound and each texel's material margin that no surface crosses the block
     /// and no other material wins in it; blocks without such a proof are evaluated exactly
     /// at every pixel. Inside/outside and materials are the exact render's at every pixel
     /// (see `docs/render2d-pipeline.md`, "Refine"). Needs the field in pass 3, so only the
-    /// renderers that hold the terrain draw it.
+    /// renderers that hold the terrain draw it. The default.
+    #[default]
     Refine,
 }
 
