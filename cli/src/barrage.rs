@@ -59,6 +59,37 @@ pub(crate) fn next_event(
     event.ok().map(|e| e.at_tick(tick))
 }
 
+/// Shells per seed of [`fire_seeded`]: each run of this many takes the next seed.
+const SHELLS_PER_SEED: usize = 100;
+
+/// Ticks [`fire_seeded`] lets pass after the last shell: every growing blast at full size.
+const SETTLE_TICKS: u32 = 120;
+
+/// The barrage `craterfield render --events N --seed S` fires, and the demo and
+/// `bench render2d` with their own seeds: `count` shells in runs of 100 seeded `seed`,
+/// `seed + 1`, ..., then 120 ticks for the blasts to settle. `progress` hears how many
+/// shells each run fired.
+pub(crate) fn fire_seeded(
+    level: &Level,
+    terrain: &mut Terrain<Graph>,
+    count: usize,
+    seed: u64,
+    mut progress: impl FnMut(usize),
+) -> BarrageStats {
+    let mut stats = BarrageStats::default();
+    for run in 0..count.div_ceil(SHELLS_PER_SEED) {
+        let n = (count - run * SHELLS_PER_SEED).min(SHELLS_PER_SEED);
+        let s = fire(level, terrain, n, seed.wrapping_add(run as u64));
+        stats.carves += s.carves;
+        stats.fills += s.fills;
+        stats.misses += s.misses;
+        stats.rejected += s.rejected;
+        progress(n);
+    }
+    terrain.set_tick(terrain.tick().saturating_add(SETTLE_TICKS));
+    stats
+}
+
 /// Fire `count` shells into `terrain`, one per tick from its current tick on (each aimed at
 /// the terrain as it is then).
 pub(crate) fn fire(

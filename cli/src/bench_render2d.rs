@@ -177,11 +177,7 @@ fn time_interleaved(
 fn scene(explosions: usize) -> Result<(Level, Terrain<Graph>), String> {
     let level = Level::default_level();
     let mut terrain = level.terrain().map_err(|e| e.to_string())?;
-    for chunk in 0..explosions.div_ceil(100) {
-        let n = (explosions - chunk * 100).min(100);
-        barrage::fire(&level, &mut terrain, n, 0x005e_ed2d + chunk as u64);
-    }
-    terrain.set_tick(terrain.tick().saturating_add(120));
+    barrage::fire_seeded(&level, &mut terrain, explosions, 0x005e_ed2d, |_| {});
     Ok((level, terrain))
 }
 

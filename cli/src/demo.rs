@@ -19,6 +19,9 @@ use crate::barrage::{self, BarrageStats};
 use crate::rng::Rng;
 use crate::{frame, render_frame, script};
 
+/// Seed of the demo's barrage (`craterfield render --seed` takes it as 12648430).
+const DEMO_SEED: u64 = 0xc0ffee;
+
 /// Players of the demo match.
 const MATCH_PLAYERS: u8 = 4;
 /// Ticks between two state hashes stored in the demo match's replay.
@@ -116,18 +119,10 @@ pub(crate) fn run(
     );
     bar.set_message("barrage");
     let t = Instant::now();
-    let mut stats = BarrageStats::default();
-    for chunk in 0..events.div_ceil(50) {
-        let n = (events - chunk * 50).min(50);
-        let s = barrage::fire(&level, &mut terrain, n, 0xc0ffee + chunk as u64);
-        stats.carves += s.carves;
-        stats.fills += s.fills;
-        stats.misses += s.misses;
-        stats.rejected += s.rejected;
-        bar.inc(n as u64);
-    }
-    // Let the last growing blasts reach full size.
-    terrain.set_tick(terrain.tick().saturating_add(60));
+    // `craterfield render --events N --seed 12648430` draws this terrain again.
+    let stats = barrage::fire_seeded(&level, &mut terrain, events, DEMO_SEED, |n| {
+        bar.inc(n as u64)
+    });
     let barrage_ms = t.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
     let applied = terrain.events().len();

@@ -27,7 +27,7 @@ use serde::Serialize;
 use crate::barrage;
 use crate::replay_cmd;
 
-/// Pixels above which the CPU renders in stripes and shows progress.
+/// Pixels above which the CPU computes field images in stripes and shows progress.
 const STRIPE_PIXELS: u64 = 4 << 20;
 /// Rows of one stripe.
 const STRIPE_ROWS: u32 = 512;
@@ -229,17 +229,7 @@ fn terrain(options: &Options, level: &Level) -> Result<Terrain<Graph>, String> {
         return Ok(world.terrain().clone());
     }
     let mut terrain = level.terrain().map_err(|e| e.to_string())?;
-    for chunk in 0..options.events.div_ceil(100) {
-        let n = (options.events - chunk * 100).min(100);
-        barrage::fire(
-            level,
-            &mut terrain,
-            n,
-            options.seed.wrapping_add(chunk as u64),
-        );
-    }
-    // Past every event's growth: the craters at their final size.
-    terrain.set_tick(terrain.tick().saturating_add(120));
+    barrage::fire_seeded(level, &mut terrain, options.events, options.seed, |_| {});
     Ok(terrain)
 }
 
@@ -318,9 +308,7 @@ fn draw(
     if let Some(drawn) = gpu {
         return Ok(drawn);
     }
-    let image = striped(camera, |stripe| {
-        draw_cpu(options, mode, terrain, palette, stripe)
-    })?;
+    let image = whole(camera, |c| draw_cpu(options, mode, terrain, palette, c))?;
     Ok((image, "CPU".into()))
 }
 
@@ -362,28 +350,24 @@ fn draw_cpu(
     .map_err(|e| e.to_string())
 }
 
-/// Renders `camera`'s image whole, or in stripes of rows with a progress bar on stderr
-/// when it is large.
-fn striped(
+/// Renders `camera`'s image in one piece, with a spinner on stderr when it is large. Not in
+/// stripes: the sky's gradient spans the image's height, so each stripe would restart it.
+fn whole(
     camera: &Camera,
-    mut render: impl FnMut(&Camera) -> Result<RgbaImage, String>,
+    render: impl FnOnce(&Camera) -> Result<RgbaImage, String>,
 ) -> Result<RgbaImage, String> {
     let pixels = u64::from(camera.width) * u64::from(camera.height);
-    if pixels <= STRIPE_PIXELS {
-        return render(camera);
+    let spinner = (pixels > STRIPE_PIXELS && std::io::stderr().is_terminal()).then(|| {
+        let s = indicatif::ProgressBar::new_spinner();
+        s.set_message(format!("rendering {}x{}", camera.width, camera.height));
+        s.enable_steady_tick(std::time::Duration::from_millis(120));
+        s
+    });
+    let image = render(camera);
+    if let Some(s) = spinner {
+        s.finish_and_clear();
     }
-    let mut image = RgbaImage::new(camera.width, camera.height);
-    let stripes = camera.height.div_ceil(STRIPE_ROWS);
-    for s in 0..stripes {
-        progress(s, stripes);
-        let y0 = s * STRIPE_ROWS;
-        let rows = STRIPE_ROWS.min(camera.height - y0);
-        let stripe = stripe_camera(camera, y0, rows);
-        let part = render(&stripe)?;
-        image::imageops::replace(&mut image, &part, 0, i64::from(y0));
-    }
-    progress(stripes, stripes);
-    Ok(image)
+    image
 }
 
 /// The camera of image rows `y0..y0 + rows` of `camera`.
@@ -423,7 +407,7 @@ fn compare(
     image: &RgbaImage,
 ) -> Result<(Comparison, PathBuf), String> {
     let threads = options.threads;
-    let exact = striped(camera, |c| {
+    let exact = whole(camera, |c| {
         render_direct(terrain, palette, c, &Default::default(), threads).map_err(|e| e.to_string())
     })?;
     let truth = striped_field(camera, |c| exact_field(terrain, c, threads))?;
@@ -463,8 +447,10 @@ fn striped_field(
         normal: Vec::new(),
         material: Vec::new(),
     };
+    let stripes = camera.height.div_ceil(STRIPE_ROWS);
     let mut y0 = 0;
     while y0 < camera.height {
+        progress(y0 / STRIPE_ROWS, stripes);
         let rows = STRIPE_ROWS.min(camera.height - y0);
         let part = field(&stripe_camera(camera, y0, rows)).map_err(|e| e.to_string())?;
         out.distance_px.extend(part.distance_px);
@@ -472,6 +458,7 @@ fn striped_field(
         out.material.extend(part.material);
         y0 += rows;
     }
+    progress(stripes, stripes);
     Ok(out)
 }
 

@@ -561,6 +561,30 @@ fn render_draws_every_mode_and_compares_with_the_exact_render() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// Above the size where the field comparison goes in stripes, the pictures stay whole: each
+/// stripe of the exact render once restarted the sky's gradient (FLIP 0.26 on an exact
+/// refine picture).
+#[test]
+fn large_renders_compare_whole_pictures() {
+    let dir = temp_dir("render2d-large");
+    let out = render(
+        &[
+            "--width",
+            "2800",
+            "--height",
+            "1600",
+            "--compare-exact",
+            "--json",
+        ],
+        &dir.join("large.png"),
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["mismatch_pct"].as_f64(), Some(0.0), "{json}");
+    assert!(json["flip"].as_f64().unwrap() < 0.003, "{json}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn render_refuses_views_and_options_it_cannot_draw() {
     let dir = temp_dir("render2d-bad");

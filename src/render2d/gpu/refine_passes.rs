@@ -81,7 +81,10 @@ impl RefineLayouts {
             corners: layout(
                 device,
                 "craterfield refine corners",
-                &[buffer_entry(0, compute, true), buffer_entry(1, compute, false)],
+                &[
+                    buffer_entry(0, compute, true),
+                    buffer_entry(1, compute, false),
+                ],
             ),
             signs: layout(
                 device,

@@ -182,7 +182,13 @@ fn entry_names(module: &naga::Module) -> Vec<String> {
 fn refine_modules_have_their_entry_points_and_struct_layouts() {
     let classify = validate("refine classify", &shaders::refine_classify_module());
     let names = entry_names(&classify);
-    for entry in ["cs_classify", "cs_open", "cs_corner_args", "cs_blocks", "cs_args"] {
+    for entry in [
+        "cs_classify",
+        "cs_open",
+        "cs_corner_args",
+        "cs_blocks",
+        "cs_args",
+    ] {
         assert!(names.contains(&entry.into()), "classify lacks {entry}");
     }
     let draw = validate("refine draw", &shaders::refine_draw_module());
@@ -206,7 +212,10 @@ fn refine_modules_have_their_entry_points_and_struct_layouts() {
     let offset = |field: &str| offsets.iter().find(|(n, _)| n == field).map(|(_, o)| *o);
     for (field, rust) in [
         ("counters", std::mem::offset_of!(GpuWork, counters)),
-        ("corner_dispatch", std::mem::offset_of!(GpuWork, corner_dispatch)),
+        (
+            "corner_dispatch",
+            std::mem::offset_of!(GpuWork, corner_dispatch),
+        ),
         ("open_blocks", std::mem::offset_of!(GpuWork, open_blocks)),
     ] {
         assert_eq!(offset(field), Some(rust as u32), "Work.{field}");
