@@ -2,8 +2,10 @@
 // (docs/render2d-pipeline.md, "Refine on the GPU"). Needs common.wgsl, refine_common.wgsl
 // and refine_proof.wgsl. Level 0 (`cs_classify`) bounds each block from the pass-1 texels
 // around it; the event signs (`cs_signs`, refine_signs.wgsl) try the blocks it left open;
-// level 1 (`cs_blocks`) bounds the blocks still open from the exact samples at their four
-// corners (written by `cs_corners`, refine_corners.wgsl) and their signs, appends the blocks
+// `cs_open` lists the blocks still open with the corners each samples and `cs_corner_args`
+// sizes the corner pass over that list; level 1 (`cs_blocks`) bounds the open blocks from
+// the exact samples at their four corners (written by `cs_corners`, refine_corners.wgsl)
+// and their signs, appends the blocks
 // it cannot prove to the list the exact pass evaluates, and counts every block once;
 // `cs_args` sizes the exact pass's dispatch.
 

@@ -14,7 +14,7 @@ use fidget::render::{ImageSize, RenderHints, ThreadPool};
 use fidget::shape::Shape;
 
 /// One timed peer run: milliseconds after parsing, and the image (row 0 at the top).
-pub struct PeerRun {
+pub(crate) struct PeerRun {
     pub ms: f64,
     pub image: Vec<bool>,
 }
@@ -96,21 +96,21 @@ fn brute<F: MathFunction>(text: &str, size: usize) -> Result<PeerRun, String> {
 }
 
 /// fidget's JIT, pruned render.
-pub fn jit_pruned(text: &str, size: u32, threads: usize) -> Result<PeerRun, String> {
+pub(crate) fn jit_pruned(text: &str, size: u32, threads: usize) -> Result<PeerRun, String> {
     pruned::<fidget::jit::JitFunction>(text, size, threads)
 }
 
 /// fidget's VM, pruned render.
-pub fn vm_pruned(text: &str, size: u32, threads: usize) -> Result<PeerRun, String> {
+pub(crate) fn vm_pruned(text: &str, size: u32, threads: usize) -> Result<PeerRun, String> {
     pruned::<fidget::vm::VmFunction>(text, size, threads)
 }
 
 /// fidget's JIT, full tape at every pixel.
-pub fn jit_brute(text: &str, size: u32) -> Result<PeerRun, String> {
+pub(crate) fn jit_brute(text: &str, size: u32) -> Result<PeerRun, String> {
     brute::<fidget::jit::JitFunction>(text, size as usize)
 }
 
 /// fidget's VM, full tape at every pixel.
-pub fn vm_brute(text: &str, size: u32) -> Result<PeerRun, String> {
+pub(crate) fn vm_brute(text: &str, size: u32) -> Result<PeerRun, String> {
     brute::<fidget::vm::VmFunction>(text, size as usize)
 }

@@ -226,7 +226,7 @@ impl RefineTargets {
         self.dims == block_dims(width, height)
     }
 
-    /// Resets the exact list and the counters, then records the six dispatches (see the
+    /// Resets the exact list and the counters, then records the eight dispatches (see the
     /// module doc).
     pub(crate) fn encode(&self, encoder: &mut wgpu::CommandEncoder, passes: ClassifyPasses<'_>) {
         encoder.copy_buffer_to_buffer(&self.work_start, 0, &self.work, 0, WORK_BYTES);
