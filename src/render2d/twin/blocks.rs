@@ -137,6 +137,18 @@ pub(super) struct Block {
     pub ys: Range<usize>,
 }
 
+impl Block {
+    /// The quad where the column run `columns` meets the row run `rows`.
+    pub(super) fn at(columns: &Run, rows: &Run) -> Block {
+        Block {
+            c: columns.cell,
+            r: rows.cell,
+            xs: columns.pixels.clone(),
+            ys: rows.pixels.clone(),
+        }
+    }
+}
+
 /// Up to three `(plane m, weight)` blends of one combined plane, in ascending `m`.
 #[derive(Clone, Copy, Debug, Default)]
 struct Ops {

@@ -306,12 +306,7 @@ fn field_rows(
 ) {
     let width = layout.columns.world.len();
     for columns in &layout.columns.runs {
-        let block = Block {
-            c: columns.cell,
-            r: rows.cell,
-            xs: columns.pixels.clone(),
-            ys: rows.pixels.clone(),
-        };
+        let block = Block::at(columns, rows);
         let kernel = Kernel::new(tex, block);
         kernel.prepare(tex, layout, scratch);
         for (yi, y) in rows.pixels.clone().enumerate() {

@@ -58,12 +58,7 @@ impl Painter<'_> {
         self.row_colors(scratch, rows);
         self.fill_sky(scratch, bytes);
         for columns in &self.layout.columns.runs {
-            let block = Block {
-                c: columns.cell,
-                r: rows.cell,
-                xs: columns.pixels.clone(),
-                ys: rows.pixels.clone(),
-            };
+            let block = Block::at(columns, rows);
             let kernel = Kernel::new(self.tex, block);
             let small = kernel.block.xs.len() * kernel.block.ys.len() < MIN_BOUNDED_PIXELS;
             // Bounding a tiny block costs more than evaluating it.

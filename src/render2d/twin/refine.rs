@@ -585,12 +585,7 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         scratch.base = bands.first().map_or(0, |b| b.pixels.start);
         for rows in bands {
             for columns in &self.layout.columns.runs {
-                let block = Block {
-                    c: columns.cell,
-                    r: rows.cell,
-                    xs: columns.pixels.clone(),
-                    ys: rows.pixels.clone(),
-                };
+                let block = Block::at(columns, rows);
                 self.quad(scratch, block, sink);
             }
         }
