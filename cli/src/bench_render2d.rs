@@ -118,18 +118,18 @@ fn wait(ctx: &GpuContext) -> Result<(), GpuError> {
 /// Times `frames` frames recorded by `record` after two warm-up frames: GPU timestamps when
 /// available, else wall time of submit + wait.
 fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<Times, GpuError> {
-    let mut times = time_interleaved(ctx, frames, &mut [&mut record])?;
-    Ok(times.remove(0))
+    let [times] = time_interleaved(ctx, frames, [&mut record])?;
+    Ok(times)
 }
 
 /// [`time_frames`] for several configurations at once, their frames taken in turn, so
 /// that a machine that slows down or speeds up during the run does so for all of them
 /// alike (the targets compare such rows).
-fn time_interleaved(
+fn time_interleaved<const N: usize>(
     ctx: &GpuContext,
     frames: u32,
-    records: &mut [&mut dyn Record],
-) -> Result<Vec<Times>, GpuError> {
+    mut records: [&mut dyn Record; N],
+) -> Result<[Times; N], GpuError> {
     for _ in 0..2 {
         for record in records.iter_mut() {
             ctx.queue.submit([encode_frame(ctx, *record, None)?]);
@@ -155,13 +155,14 @@ fn time_interleaved(
                 ts.encode_resolve(&mut encoder);
             }
             ctx.queue.submit([encoder.finish()]);
-            stamps
+            let ms = stamps
                 .iter()
-                .map(|ts| ts.read_ms(&ctx.device).map(Times::of))
-                .collect()
+                .map(|ts| ts.read_ms(&ctx.device))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(per_configuration(ms))
         }
         None => {
-            let mut ms = vec![Vec::new(); records.len()];
+            let mut ms = vec![Vec::new(); N];
             for _ in 0..frames {
                 for (record, ms) in records.iter_mut().zip(&mut ms) {
                     let t = Instant::now();
@@ -170,9 +171,14 @@ fn time_interleaved(
                     ms.push(t.elapsed().as_secs_f64() * 1e3);
                 }
             }
-            Ok(ms.into_iter().map(Times::of).collect())
+            Ok(per_configuration(ms))
         }
     }
+}
+
+/// The times of each of `N` configurations, from their frame times (one list each).
+fn per_configuration<const N: usize>(mut ms: Vec<Vec<f64>>) -> [Times; N] {
+    std::array::from_fn(|i| Times::of(ms.get_mut(i).map(std::mem::take).unwrap_or_default()))
 }
 
 fn scene(explosions: usize) -> Result<(Level, Terrain<Graph>), String> {
@@ -219,7 +225,8 @@ fn gpu_rows(
             rows.push(Row::new("reduced", scale.divisor(), name, ms));
         }
         if scale == Scale::Sixteenth {
-            let (planes, refined, stats) = sixteenth_pair(ctx, terrain, palette, camera, frames)?;
+            let (planes, refined, stats) =
+                sixteenth_pair(ctx, terrain, palette, camera, target.view(), frames)?;
             rows.push(Row::new("reduced", 16, "planes", planes));
             rows.push(Row::new("reduced", 16, "refine", refined));
             refine = Some(stats);
@@ -235,9 +242,9 @@ fn sixteenth_pair(
     terrain: &Terrain<Graph>,
     palette: &[[u8; 3]],
     camera: &Camera,
+    view: &wgpu::TextureView,
     frames: u32,
 ) -> Result<(Times, Times, RefineStats), GpuError> {
-    let target = Offscreen::new(&ctx.device, camera.width, camera.height)?;
     let renderer = |reconstruction| -> Result<TerrainRenderer, GpuError> {
         let options = RenderOptions {
             scale: Scale::Sixteenth,
@@ -253,11 +260,10 @@ fn sixteenth_pair(
         renderer(Reconstruction::Planes)?,
         renderer(Reconstruction::Refine)?,
     );
-    let view = target.view();
-    let mut times = time_interleaved(
+    let [planes_t, refine_t] = time_interleaved(
         ctx,
         frames,
-        &mut [
+        [
             &mut |enc: &mut wgpu::CommandEncoder, ts: Timestamp<'_>| {
                 planes.render_timed(enc, view, ts)
             },
@@ -265,11 +271,7 @@ fn sixteenth_pair(
                 refine.render_timed(enc, view, ts)
             },
         ],
-    )?
-    .into_iter();
-    let (Some(planes_t), Some(refine_t)) = (times.next(), times.next()) else {
-        return Err(GpuError::Unsupported("time two configurations".into()));
-    };
+    )?;
     Ok((planes_t, refine_t, refine.refine_stats()?))
 }
 
@@ -300,19 +302,19 @@ impl Times {
 
 /// Times `frames` CPU frames of `render` after two warm-up frames.
 fn cpu_times(frames: u32, mut render: impl FnMut() -> Result<(), String>) -> Result<Times, String> {
-    let mut times = cpu_times_interleaved(frames, &mut [&mut render])?;
-    Ok(times.remove(0))
+    let [times] = cpu_times_interleaved(frames, [&mut render])?;
+    Ok(times)
 }
 
 /// A CPU frame renderer being timed.
 type CpuRender<'a> = dyn FnMut() -> Result<(), String> + 'a;
 
 /// [`cpu_times`] for several renderers, their frames taken in turn (see [`time_interleaved`]).
-fn cpu_times_interleaved(
+fn cpu_times_interleaved<const N: usize>(
     frames: u32,
-    renders: &mut [&mut CpuRender<'_>],
-) -> Result<Vec<Times>, String> {
-    let mut ms = vec![Vec::new(); renders.len()];
+    mut renders: [&mut CpuRender<'_>; N],
+) -> Result<[Times; N], String> {
+    let mut ms = vec![Vec::new(); N];
     for i in 0..frames + 2 {
         for (render, ms) in renders.iter_mut().zip(&mut ms) {
             let t = Instant::now();
@@ -322,7 +324,7 @@ fn cpu_times_interleaved(
             }
         }
     }
-    Ok(ms.into_iter().map(Times::of).collect())
+    Ok(per_configuration(ms))
 }
 
 /// One CPU configuration's frame times.
@@ -359,9 +361,9 @@ fn cpu_rows(
     };
     let mut stats = RefineStats::default();
     // In turn, as on the GPU: the target compares these two.
-    let mut times = cpu_times_interleaved(
+    let [planes_t, refine_t] = cpu_times_interleaved(
         frames,
-        &mut [
+        [
             &mut || {
                 render_twin(terrain, palette, camera, &planes, 0)
                     .map(|_| ())
@@ -374,11 +376,7 @@ fn cpu_rows(
                 Ok(())
             },
         ],
-    )?
-    .into_iter();
-    let (Some(planes_t), Some(refine_t)) = (times.next(), times.next()) else {
-        return Err("time two configurations".into());
-    };
+    )?;
     let row = |pipeline, scale, mode, times| CpuRow {
         pipeline,
         scale,

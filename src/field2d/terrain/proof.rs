@@ -127,14 +127,11 @@ impl<F: Sdf> Terrain<F> {
                 })
             })
             .collect();
-        let start = match c.state.0 {
-            CellState::Brick(id) => Start::Brick(id),
-            _ => {
-                let (lo, hi) = self.start_range(cell, Vec2::ZERO, Vec2::ZERO);
-                Start::Range(lo, hi)
-            }
-        };
-        Some(EventDiscs { cell, discs, start })
+        Some(EventDiscs {
+            cell,
+            discs,
+            start: self.proof_start(cell),
+        })
     }
 
     /// [`Terrain::rect_sign`] over the events `discs` read of one cell.
@@ -194,14 +191,7 @@ impl<F: Sdf> Terrain<F> {
         let (up, down) = match (up, down) {
             (Some(u), Some(d)) => (u, d),
             (u, d) => {
-                let (lo, hi) = match discs.start {
-                    Start::Range(lo, hi) => (lo, hi),
-                    Start::Brick(id) => {
-                        let m = self.options.band;
-                        self.brick_range(discs.cell, id, min, max)
-                            .unwrap_or((-m, m))
-                    }
-                };
+                let (lo, hi) = self.start_bounds(discs.start, discs.cell, min, max);
                 (u.unwrap_or(lo >= above), d.unwrap_or(hi <= below))
             }
         };
@@ -227,18 +217,36 @@ impl<F: Sdf> Terrain<F> {
     /// interpolant stays within the samples of the lattice squares it covers; the base's
     /// bound is over the whole cell).
     fn start_range(&self, cell: usize, min: Vec2, max: Vec2) -> (f32, f32) {
+        self.start_bounds(self.proof_start(cell), cell, min, max)
+    }
+
+    /// Cell `cell`'s starting state as the sign proof bounds it: one range over the whole
+    /// cell, or a brick to read over each rectangle.
+    fn proof_start(&self, cell: usize) -> Start {
         let m = self.options.band;
         let Some(c) = self.grid.cells.get(cell) else {
-            return (-m, m);
+            return Start::Range(-m, m);
         };
         match c.state.0 {
             CellState::Base => match &self.cell_tapes {
-                Some(cell_tapes) => cell_tapes.get(&self.grid, Some(cell)).range,
-                None => (-m, m),
+                Some(cell_tapes) => {
+                    let (lo, hi) = cell_tapes.get(&self.grid, Some(cell)).range;
+                    Start::Range(lo, hi)
+                }
+                None => Start::Range(-m, m),
             },
-            CellState::Air(_) => (m, m),
-            CellState::Solid(_) => (-m, -m),
-            CellState::Brick(id) => self.brick_range(cell, id, min, max).unwrap_or((-m, m)),
+            CellState::Air(_) => Start::Range(m, m),
+            CellState::Solid(_) => Start::Range(-m, -m),
+            CellState::Brick(id) => Start::Brick(id),
+        }
+    }
+
+    /// The bounds of starting state `start` of cell `cell` over the rectangle `[min, max]`.
+    fn start_bounds(&self, start: Start, cell: usize, min: Vec2, max: Vec2) -> (f32, f32) {
+        let m = self.options.band;
+        match start {
+            Start::Range(lo, hi) => (lo, hi),
+            Start::Brick(id) => self.brick_range(cell, id, min, max).unwrap_or((-m, m)),
         }
     }
 

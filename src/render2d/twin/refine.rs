@@ -472,13 +472,12 @@ impl Quad {
 
 /// Where the pixels of a refined frame go: an RGBA image or a field image.
 trait Sink {
-    /// Whether proven-sky pixels need their interpolated distance (field images do).
-    const SKY_VALUES: bool;
-    /// Whether pixels of solid blocks proven deeper than the interior depth need their
-    /// interpolated distance and normal ([`Sink::proven`]); without, [`Sink::deep`].
-    const DEEP_VALUES: bool;
+    /// Whether proven sky and deep solid pixels need their interpolated distance and normal
+    /// ([`Sink::proven`]; field images do). Without, sky is filled beforehand and deep
+    /// solid pixels go to [`Sink::deep`].
+    const VALUES: bool;
     /// Pixels `xs` of row `yi`, proven solid of `material` and deeper than the interior
-    /// depth (only called where `DEEP_VALUES` is false).
+    /// depth (only called where `VALUES` is false).
     fn deep(&mut self, xs: Range<usize>, yi: usize, material: MaterialId);
     /// A proven pixel: its distance (world units), normal and material.
     fn proven(&mut self, x: usize, yi: usize, d: f32, n: Vec2, material: MaterialId);
@@ -518,7 +517,7 @@ struct Deferred {
     first: usize,
 }
 
-/// Class counts of one thread's band, added to [`Counters`] when the band is done.
+/// Class counts of one unit of work, added to [`Counters`] when the unit is done.
 #[derive(Clone, Copy, Default)]
 struct Tally {
     blocks: u64,
@@ -623,8 +622,8 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         }
         Self::count(&mut scratch.tally, &scratch.classes, &col_blocks, ys.len());
         let interpolated = |c: &Class| match c {
-            Class::Sky { .. } => S::SKY_VALUES,
-            Class::Solid { shaded, .. } => !shaded && S::DEEP_VALUES,
+            Class::Sky { .. } => S::VALUES,
+            Class::Solid { shaded, .. } => !shaded && S::VALUES,
             Class::Uncertain => false,
         };
         let kernel = Kernel::new(self.tex, block);
@@ -644,7 +643,7 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
                 // Sky of an image is already filled, and shaded solid blocks are drawn
                 // later from their corners: no pixel of theirs to visit here.
                 let visit = match class {
-                    Class::Sky { .. } => S::SKY_VALUES,
+                    Class::Sky { .. } => S::VALUES,
                     Class::Solid { shaded, .. } => !shaded,
                     Class::Uncertain => true,
                 };
@@ -655,7 +654,7 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
                     material: Material::One(m),
                     ..
                 } = class
-                    && !S::DEEP_VALUES
+                    && !S::VALUES
                 {
                     sink.deep(bx.clone(), yi, m);
                     continue;
@@ -664,14 +663,14 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
                     let i = x - xs.start;
                     let p = Vec2::new(layout.columns.world[x], layout.rows.world[y]);
                     match class {
-                        Class::Sky { lo } if S::SKY_VALUES => {
+                        Class::Sky { lo } if S::VALUES => {
                             let d = scratch.blocks.dist[i].max(lo);
                             let n = normal(&kernel.quad, pixel_weights(layout, x, y));
                             sink.proven(x, yi, d, n, kernel.material(layout, x, y));
                         }
                         Class::Sky { .. } => {}
                         Class::Solid { shaded: true, .. } => {}
-                        Class::Solid { material, .. } if !S::DEEP_VALUES => {
+                        Class::Solid { material, .. } if !S::VALUES => {
                             match self.prover.pixel_material(material, p) {
                                 Some(m) => sink.deep(x..x + 1, yi, m),
                                 None => queue(scratch, p, x, yi),
@@ -810,7 +809,7 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         tally.blocks += classes.len() as u64;
     }
 
-    /// Adds a band's tally to the frame's counters (once per band: per-block atomics
+    /// Adds a unit's tally to the frame's counters (once per unit: per-block atomics
     /// would bounce one cache line between the threads).
     fn flush(&self, tally: &mut Tally) {
         let c = &self.counters;
@@ -911,8 +910,7 @@ impl ImageSink<'_> {
 }
 
 impl Sink for ImageSink<'_> {
-    const SKY_VALUES: bool = false;
-    const DEEP_VALUES: bool = false;
+    const VALUES: bool = false;
 
     fn deep(&mut self, xs: Range<usize>, yi: usize, material: MaterialId) {
         let rgb = match self.deep_color {
@@ -960,8 +958,7 @@ struct FieldSink<'a> {
 }
 
 impl Sink for FieldSink<'_> {
-    const SKY_VALUES: bool = true;
-    const DEEP_VALUES: bool = true;
+    const VALUES: bool = true;
 
     fn deep(&mut self, _: Range<usize>, _: usize, _: MaterialId) {
         unreachable!("field images take the interpolated values of deep pixels")
