@@ -377,7 +377,7 @@ impl<F: Sdf> Terrain<F> {
                     (false, false) => margin.min(c - d),
                 };
             }
-            (d, mat) = super::apply_event(d, mat, pn, e, self.tick, band);
+            (d, mat) = super::field::apply_event(d, mat, pn, e, self.tick, band);
         }
         // NaN (never expected) proves nothing.
         if margin >= 0.0 { margin } else { 0.0 }

@@ -2,7 +2,8 @@
 //! soft shadows, and surface normals, as the plan's "Marching" and "Normals" sections
 //! define them.
 
-use super::eval::{Scene, Tally, map};
+use super::constants::SceneConstants;
+use super::eval::{Tally, map};
 use super::lanes::V3;
 use crate::emit::plan3d::March;
 use crate::march3d::simd::Pack;
@@ -40,7 +41,7 @@ pub(crate) struct Hit<P: Pack> {
 #[inline(always)]
 pub(crate) fn march<P: Pack>(
     p: P,
-    s: &Scene,
+    s: &SceneConstants,
     mc: &MarchC,
     o: V3<P>,
     dir: V3<P>,
@@ -64,7 +65,7 @@ pub(crate) fn march<P: Pack>(
 #[inline(always)]
 fn march_plain<P: Pack>(
     p: P,
-    s: &Scene,
+    s: &SceneConstants,
     mc: &MarchC,
     o: V3<P>,
     dir: V3<P>,
@@ -106,7 +107,7 @@ fn march_plain<P: Pack>(
 #[inline(always)]
 fn march_relaxed<P: Pack>(
     p: P,
-    s: &Scene,
+    s: &SceneConstants,
     mc: &MarchC,
     o: V3<P>,
     dir: V3<P>,
@@ -166,7 +167,7 @@ fn march_relaxed<P: Pack>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn soft_shadow<P: Pack>(
     p: P,
-    s: &Scene,
+    s: &SceneConstants,
     mc: &MarchC,
     (pos, n, l): (V3<P>, V3<P>, V3<P>),
     limit: P::F,
@@ -203,7 +204,7 @@ pub(crate) fn soft_shadow<P: Pack>(
 #[inline(always)]
 pub(crate) fn normal<P: Pack>(
     p: P,
-    s: &Scene,
+    s: &SceneConstants,
     mc: &MarchC,
     (q, m, d): (V3<P>, P::I, P::F),
     live: P::M,

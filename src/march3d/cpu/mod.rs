@@ -11,9 +11,11 @@
 //! and march steps over every ray of every pixel (primary, reflected, shadow, occlusion,
 //! normals) and the floating-point operations of the frame.
 
+mod constants;
 mod eval;
 mod lanes;
 mod march;
+mod prims;
 mod shade;
 
 use std::sync::Mutex;

@@ -4,9 +4,11 @@
 
 use glam::Vec3;
 
-use super::eval::{Scene, Tally, map, ray_meets_sphere};
+use super::constants::SceneConstants;
+use super::eval::{Tally, map};
 use super::lanes::V3;
 use super::march::{MarchC, march, normal, soft_shadow};
+use super::prims::ray_meets_sphere;
 use crate::emit::plan3d::{
     AoMode, Camera3d, Material, PaperShading, Plan, Shading, ShadowMode, Sphere, WorldShading,
 };
@@ -19,7 +21,7 @@ pub(crate) const MAX_WIDTH: usize = 16;
 /// Everything one frame's kernel reads: compiled once, shared by all threads.
 #[derive(Clone, Debug)]
 pub(crate) struct Frame {
-    pub scene: Scene,
+    pub scene: SceneConstants,
     pub march: MarchC,
     pub shading: Shading,
     pub materials: Vec<Material>,
@@ -33,7 +35,7 @@ impl Frame {
     /// The frame of a valid plan.
     pub(super) fn new(plan: &Plan, camera: &Camera3d, width: u32, height: u32) -> Frame {
         Frame {
-            scene: Scene::new(plan),
+            scene: SceneConstants::new(plan),
             march: MarchC::new(&plan.march),
             shading: plan.shading.clone(),
             materials: plan.materials.clone(),

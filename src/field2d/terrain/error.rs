@@ -1,0 +1,87 @@
+//! Why a terrain could not be built or an event not applied.
+
+use glam::Vec2;
+use thiserror::Error;
+
+use super::grid::GridError;
+use super::limits::MAX_COORD;
+use crate::field2d::event::EventError;
+use crate::field2d::sample::MaterialId;
+
+/// Why a terrain could not be built or an event not applied.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum TerrainError {
+    /// A bound is NaN, infinite or beyond [`MAX_COORD`].
+    #[error("terrain bound {name} = {value} must be finite with magnitude <= {MAX_COORD}")]
+    BadBound {
+        /// Which bound (`min.x`, ...).
+        name: &'static str,
+        /// The offending value.
+        value: f32,
+    },
+    /// `bounds_min` is not below `bounds_max` on some axis.
+    #[error("terrain bounds are empty: min {min} must be below max {max} on both axes")]
+    EmptyBounds {
+        /// Lower corner.
+        min: Vec2,
+        /// Upper corner.
+        max: Vec2,
+    },
+    /// An option is out of its accepted range.
+    #[error("terrain option {name} = {value} is invalid: {reason}")]
+    BadOption {
+        /// The option.
+        name: &'static str,
+        /// Its value, formatted.
+        value: String,
+        /// What is required.
+        reason: &'static str,
+    },
+    /// The grid could not be built.
+    #[error("terrain grid: {0}")]
+    Grid(#[from] GridError),
+    /// The event is malformed.
+    #[error("invalid event: {0}")]
+    Event(#[from] EventError),
+    /// The event radius exceeds `max_event_radius`.
+    #[error("event radius {radius} exceeds max_event_radius {max}")]
+    RadiusTooLarge {
+        /// The radius.
+        radius: f32,
+        /// The limit.
+        max: f32,
+    },
+    /// The event rim exceeds `max_rim`.
+    #[error("event rim {rim} exceeds max_rim {max}")]
+    RimTooLarge {
+        /// The rim.
+        rim: f32,
+        /// The limit.
+        max: f32,
+    },
+    /// The event centre lies outside the terrain bounds.
+    #[error("event center {center} lies outside the terrain bounds {min} .. {max}")]
+    CenterOutOfBounds {
+        /// The centre.
+        center: Vec2,
+        /// Lower bound.
+        min: Vec2,
+        /// Upper bound.
+        max: Vec2,
+    },
+    /// A fill uses a material beyond `material_count`.
+    #[error("fill material {material} is out of range (material_count is {count})")]
+    BadMaterial {
+        /// The material.
+        material: MaterialId,
+        /// The number of materials.
+        count: u16,
+    },
+    /// The terrain already holds `max_events` events.
+    #[error("too many events: the terrain already holds max_events = {max}")]
+    TooManyEvents {
+        /// The limit.
+        max: usize,
+    },
+}

@@ -1,0 +1,219 @@
+//! Keeping the explosion grid: listing a new event in the cells it reaches, the exact
+//! pruning of those lists (cell resets and covered events), baking over-long lists into
+//! bricks, and rebuilding everything after the tick moves back. The module doc of the
+//! terrain proves each step bitwise equal to the brute force.
+
+use super::Terrain;
+use super::grid::{self, Brick, CellState, MaterialSource};
+use crate::det::math::Dual;
+use crate::det::quant::FIXED_ONE;
+use crate::field2d::event::{Event, EventKind};
+use crate::field2d::sdf::Sdf;
+
+/// Exact `f64` distance between two fixed-point centres, in world units.
+fn center_dist(a: &Event, b: &Event) -> f64 {
+    let dx = (i64::from(a.center[0]) - i64::from(b.center[0])) as f64;
+    let dy = (i64::from(a.center[1]) - i64::from(b.center[1])) as f64;
+    (dx * dx + dy * dy).sqrt() / f64::from(FIXED_ONE)
+}
+
+fn fixed_f64(v: i32) -> f64 {
+    f64::from(v) / f64::from(FIXED_ONE)
+}
+
+/// `|cx| + |cy| + r + k` of an event, world units (for guards).
+fn event_extent(e: &Event) -> f64 {
+    fixed_f64(e.center[0]).abs()
+        + fixed_f64(e.center[1]).abs()
+        + fixed_f64(e.radius)
+        + fixed_f64(e.rim)
+}
+
+impl<F: Sdf> Terrain<F> {
+    /// Rebuilds the grid by replaying every event at the current tick.
+    pub(super) fn rebuild(&mut self) {
+        self.grid.clear();
+        for i in 0..self.grid.cells.len() {
+            let revision = self.new_revision();
+            if let Some(c) = self.grid.cells.get_mut(i) {
+                c.revision = revision;
+            }
+        }
+        if let Some(j) = &mut self.grid.journal {
+            j.reset();
+        }
+        self.over_cap.clear();
+        for idx in 0..self.events.len() as u32 {
+            self.insert(idx);
+        }
+    }
+
+    /// Lists event `idx` in every cell it can reach, then prunes those cells.
+    pub(super) fn insert(&mut self, idx: u32) {
+        let Some(e) = self.events.get(idx as usize).copied() else {
+            return;
+        };
+        let band = f64::from(self.options.band);
+        let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
+        let extent = event_extent(&e) + band;
+        let reach = fixed_f64(e.radius) + fixed_f64(e.rim) + band;
+        let settled_at = e.tick.saturating_add(u32::from(e.grow_ticks));
+        for cell in self.grid.cells_touching(center, reach, extent) {
+            self.record_cell(cell);
+            let revision = self.new_revision();
+            if let Some(c) = self.grid.cells.get_mut(cell) {
+                c.events.push(idx);
+                c.revision = revision;
+                c.settled_at = c.settled_at.max(settled_at);
+            }
+            self.prune_new(cell, idx, &e);
+            self.compact(cell);
+        }
+    }
+
+    /// Cell reset and covered-event pruning for the event `idx` just appended to `cell`.
+    pub(super) fn prune_new(&mut self, cell: usize, idx: u32, e: &Event) {
+        if !(e.is_sharp() && e.is_settled(self.tick)) {
+            return;
+        }
+        let band = f64::from(self.options.band);
+        let rect = self.grid.cell_rect(cell);
+        let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
+        let g = 2.0 * grid::guard(event_extent(e) + band, &rect);
+        let Some(c) = self.grid.cells.get(cell) else {
+            return;
+        };
+        // 1. Cell reset.
+        if rect.far_dist(center) + band + g <= fixed_f64(e.radius) {
+            let new_state = match e.kind {
+                EventKind::Fill => Some(CellState::Solid(e.material)),
+                EventKind::Carve => {
+                    let has_fill = c.events.iter().any(|&i| {
+                        self.events
+                            .get(i as usize)
+                            .is_none_or(|x| x.kind == EventKind::Fill)
+                    });
+                    if has_fill {
+                        None
+                    } else {
+                        Some(CellState::Air(match c.state.0 {
+                            CellState::Base => MaterialSource::Base,
+                            CellState::Air(src) => src,
+                            CellState::Solid(m) => MaterialSource::Constant(m),
+                            CellState::Brick(id) => MaterialSource::Brick(id),
+                        }))
+                    }
+                }
+            };
+            if let Some(state) = new_state {
+                self.grid.set_state(cell, state);
+                if let Some(c) = self.grid.cells.get_mut(cell) {
+                    c.events.clear();
+                }
+                self.over_cap.remove(&cell);
+                self.grid.stats.resets += 1;
+                return;
+            }
+        }
+        // 2. Covered events, within the run of sharp same-kind same-material events that
+        //    ends with the new one.
+        let list = &c.events;
+        let Some(&last) = list.last() else { return };
+        if last != idx {
+            return;
+        }
+        let mut drop_new = false;
+        let mut drop: Vec<usize> = Vec::new();
+        for pos in (0..list.len().saturating_sub(1)).rev() {
+            let Some(x) = list.get(pos).and_then(|&i| self.events.get(i as usize)) else {
+                break;
+            };
+            let same_run = x.kind == e.kind
+                && x.is_sharp()
+                && (e.kind == EventKind::Carve || x.material == e.material);
+            if !same_run {
+                break;
+            }
+            if !x.is_settled(self.tick) {
+                continue;
+            }
+            let dist = center_dist(x, e);
+            let g = 2.0 * grid::guard(event_extent(x) + event_extent(e) + band, &rect);
+            let (rx, re) = (fixed_f64(x.radius), fixed_f64(e.radius));
+            if re >= rx + dist + g {
+                drop.push(pos);
+            } else if rx >= re + dist + g {
+                drop_new = true;
+                break;
+            }
+        }
+        let Some(c) = self.grid.cells.get_mut(cell) else {
+            return;
+        };
+        let mut pruned = drop.len() as u64;
+        if drop_new {
+            c.events.pop();
+            pruned += 1;
+        }
+        // `drop` is in descending position order, so removals don't shift later ones.
+        for pos in drop {
+            if pos < c.events.len() {
+                c.events.remove(pos);
+            }
+        }
+        self.grid.stats.pruned += pruned;
+    }
+
+    /// Bakes the longest settled prefix of an over-long list into a brick.
+    pub(super) fn compact(&mut self, cell: usize) {
+        let cap = self.options.cell_cap;
+        let Some(c) = self.grid.cells.get(cell) else {
+            return;
+        };
+        if c.events.len() <= cap {
+            self.over_cap.remove(&cell);
+            return;
+        }
+        let prefix = c
+            .events
+            .iter()
+            .take_while(|&&i| {
+                self.events
+                    .get(i as usize)
+                    .is_some_and(|e| e.is_settled(self.tick))
+            })
+            .count();
+        if prefix > 0 {
+            let n = self.grid.brick_resolution();
+            let count = ((n + 1) * (n + 1)) as usize;
+            let mut brick = Brick {
+                values: Vec::with_capacity(count),
+                materials: Vec::with_capacity(count),
+            };
+            for j in 0..=n {
+                for i in 0..=n {
+                    let q = self.grid.lattice_point(cell, i, j);
+                    let (d, m) = self.eval_cell::<Dual, true>(q, cell, prefix);
+                    brick.values.push(d.v);
+                    brick.materials.push(m);
+                }
+            }
+            let id = self.grid.store_brick(cell, brick);
+            self.grid.set_state(cell, CellState::Brick(id));
+            if let Some(c) = self.grid.cells.get_mut(cell) {
+                c.events.drain(..prefix.min(c.events.len()));
+            }
+            self.grid.stats.bakes += 1;
+        }
+        if self
+            .grid
+            .cells
+            .get(cell)
+            .is_some_and(|c| c.events.len() > cap)
+        {
+            self.over_cap.insert(cell);
+        } else {
+            self.over_cap.remove(&cell);
+        }
+    }
+}
