@@ -8,6 +8,7 @@
 //!
 //! A game starts from [`prelude`]: `use craterfield::prelude::*;`.
 
+pub mod backend;
 pub mod det;
 #[cfg(feature = "emit")]
 pub mod emit;

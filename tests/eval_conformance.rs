@@ -13,7 +13,7 @@ mod common;
 use std::collections::BTreeSet;
 
 use common::Rng;
-use craterfield::field2d::simd::Backend;
+use craterfield::backend::Backend;
 use craterfield::field2d::tape::{Op, Outputs, Program};
 use craterfield::field2d::{Event, Graph, Level, Node, Sample, Sdf, TerrainOptions};
 use glam::Vec2;

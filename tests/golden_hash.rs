@@ -7,7 +7,7 @@
 mod common;
 
 use common::Rng;
-use craterfield::field2d::simd::Backend;
+use craterfield::backend::Backend;
 use craterfield::field2d::{Event, EventKind, Level, Sample, Sdf, Terrain};
 use glam::Vec2;
 

@@ -1,13 +1,14 @@
 //! The CPU sphere tracer against geometry, against itself across instruction sets, thread
 //! counts and tile sizes, and its counting mode, over-relaxation and input errors.
 
+use craterfield::backend::Backend;
 use craterfield::emit::plan3d::{
     AoMode, Camera3d, Fbm, Guard, Hash, Lift, March, Material, Node, PaperShading, Plan,
     PointLight, Prim, PrimKind, Shading, ShadowMode, Shape, Sphere, TerrainPlan, WorldShading,
 };
 use craterfield::march3d::cpu::{self, Rendered, TraceError, TraceOptions};
 use craterfield::march3d::scene::rotation_degrees;
-use craterfield::march3d::simd::Isa;
+use craterfield::march3d::simd;
 use glam::Vec3;
 
 fn paper_march() -> March {
@@ -358,10 +359,10 @@ fn world_alt() -> (Plan, Camera3d) {
     (plan, cam)
 }
 
-fn opts(isa: Isa, threads: usize, tile: u32) -> TraceOptions {
+fn opts(backend: Backend, threads: usize, tile: u32) -> TraceOptions {
     TraceOptions {
         threads,
-        isa: Some(isa),
+        backend: Some(backend),
         tile,
     }
 }
@@ -410,10 +411,10 @@ fn assert_has_content(img: &Rendered, name: &str) {
 #[test]
 fn every_available_isa_draws_the_scalar_image() {
     for (name, scene) in scenes() {
-        let reference = draw(&scene, &opts(Isa::Scalar, 1, 16));
+        let reference = draw(&scene, &opts(Backend::Scalar, 1, 16));
         assert_has_content(&reference, name);
-        for isa in [Isa::Avx2, Isa::Neon] {
-            if !isa.available() {
+        for isa in [Backend::Avx2, Backend::Neon] {
+            if !isa.is_available() {
                 continue;
             }
             let img = draw(&scene, &opts(isa, 1, 16));
@@ -430,7 +431,7 @@ fn every_available_isa_draws_the_scalar_image() {
 #[test]
 fn threads_and_tiles_do_not_change_the_image() {
     for (name, scene) in scenes() {
-        let isa = Isa::best().unwrap();
+        let isa = simd::best();
         let one = draw(&scene, &opts(isa, 1, 32));
         assert_eq!(one, draw(&scene, &opts(isa, 2, 32)), "{name}: threads");
         assert_eq!(one, draw(&scene, &opts(isa, 3, 5)), "{name}: tiles");
@@ -468,7 +469,7 @@ fn a_sphere_covers_the_pixels_whose_rays_meet_it() {
     };
     let cam = camera(30.0);
     let (w, h) = (96, 64);
-    for isa in [Isa::Scalar, Isa::best().unwrap()] {
+    for isa in [Backend::Scalar, simd::best()] {
         let img = cpu::render(&plan, &cam, w, h, &opts(isa, 1, 16)).unwrap();
         let mut hits = 0;
         for j in 0..h {
@@ -495,7 +496,7 @@ fn a_sphere_covers_the_pixels_whose_rays_meet_it() {
 fn counting_mode_counts_and_draws_the_scalar_image() {
     for (name, scene) in scenes() {
         let (img, stats) = cpu::render_counted(&scene.0, &scene.1, 64, 36, 2).unwrap();
-        assert_eq!(img, draw(&scene, &opts(Isa::Scalar, 1, 16)), "{name}");
+        assert_eq!(img, draw(&scene, &opts(Backend::Scalar, 1, 16)), "{name}");
         assert_eq!(stats.pixels, 64 * 36);
         assert!(stats.steps > stats.pixels, "{name}: {stats:?}");
         assert!(stats.sdf_evals >= stats.steps, "{name}: {stats:?}");
@@ -570,7 +571,7 @@ fn materials_found_after_the_march_equal_tracked_ones() {
     let (plan, cam) = scene0();
     let mut untracked = plan.clone();
     untracked.material_ids = false;
-    let o = opts(Isa::best().unwrap(), 1, 16);
+    let o = opts(simd::best(), 1, 16);
     let a = cpu::render(&plan, &cam, 64, 36, &o).unwrap();
     let b = cpu::render(&untracked, &cam, 64, 36, &o).unwrap();
     assert_eq!(a, b);
@@ -651,11 +652,11 @@ fn bad_sizes_and_values_are_errors() {
         cpu::render(&plan, &cam, 8, 8, &tile0),
         Err(TraceError::BadTile)
     ));
-    for isa in [Isa::Avx2, Isa::Neon] {
-        if !isa.available() {
+    for isa in Backend::ALL {
+        if simd::check(isa).is_err() {
             assert!(matches!(
                 cpu::render(&plan, &cam, 8, 8, &opts(isa, 1, 8)),
-                Err(TraceError::Isa(_))
+                Err(TraceError::Backend(_))
             ));
         }
     }
@@ -666,7 +667,7 @@ fn bad_sizes_and_values_are_errors() {
 #[test]
 #[ignore]
 fn time_paper_scenes() {
-    let isa = Isa::best().unwrap();
+    let isa = simd::best();
     for (name, scene) in [("scene0", scene0()), ("mandelbulb", mandelbulb())] {
         for threads in [1, 2] {
             let mut best = f64::INFINITY;

@@ -7,7 +7,7 @@ use common::Rng;
 
 use std::collections::VecDeque;
 
-use craterfield::field2d::simd::Backend;
+use craterfield::backend::Backend;
 use craterfield::field2d::{Level, Sdf};
 use craterfield::sim::{Input, Settings, SimError, Snapshot, World, buttons};
 use glam::Vec2;

@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+use craterfield::backend::Backend;
 use craterfield::field2d::import::graph_from_vm;
-use craterfield::field2d::simd::Backend;
 use craterfield::field2d::tape::Outputs;
 use craterfield::field2d::tape::{ImageOptions, inside_image};
 use craterfield::field2d::{Graph, Level, Sample, Terrain};

@@ -12,10 +12,11 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
+use craterfield::backend::Backend;
 use craterfield::march3d::compile::{CompileOptions, Optimization};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::scene::Scene;
-use craterfield::march3d::simd::Isa;
+use craterfield::march3d::simd;
 use craterfield::march3d::{Camera3d, Plan};
 use craterfield::visdiff::{DiffOptions, compare};
 use serde::Serialize;
@@ -104,13 +105,13 @@ fn time_cpu(
     plan: &Plan,
     cam: &Camera3d,
     size: (u32, u32),
-    isa: Isa,
+    isa: Backend,
     threads: usize,
     frames: u32,
 ) -> Result<f64, String> {
     let opts = TraceOptions {
         threads,
-        isa: Some(isa),
+        backend: Some(isa),
         ..TraceOptions::default()
     };
     let mut s = Vec::new();
@@ -124,7 +125,7 @@ fn time_cpu(
 
 fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, String> {
     let size = parse_size(&o.size)?;
-    let best = Isa::best().map_err(|e| e.to_string())?;
+    let best = simd::best();
     let mut rows = Vec::new();
     for name in ["scene0", "mandelbulb"] {
         let scene = Scene::builtin(name).map_err(|e| e.to_string())?;
@@ -137,16 +138,16 @@ fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, Str
             threads.push(all_threads);
         }
         let mut scalar_s = Vec::new();
-        let isas: Vec<Isa> = if o.no_scalar || best == Isa::Scalar {
+        let isas: Vec<Backend> = if o.no_scalar || best == Backend::Scalar {
             vec![best]
         } else {
-            vec![Isa::Scalar, best]
+            vec![Backend::Scalar, best]
         };
         for isa in isas {
             for (k, &t) in threads.iter().enumerate() {
-                let frames = if isa == Isa::Scalar { 1 } else { o.frames };
+                let frames = if isa == Backend::Scalar { 1 } else { o.frames };
                 let s = time_cpu(&plan, &cam, size, isa, t, frames)?;
-                if isa == Isa::Scalar {
+                if isa == Backend::Scalar {
                     scalar_s.push(s);
                 }
                 let speedup = scalar_s.get(k).map(|sc| sc / s);

@@ -5,11 +5,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+use craterfield::backend::Backend;
 use craterfield::emit::plan3d::Shading;
 use craterfield::march3d::compile::{CompileOptions, Optimization, WorldCompiler};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::scene::Scene;
-use craterfield::march3d::simd::Isa;
+use craterfield::march3d::simd;
 use craterfield::march3d::{Camera3d, Plan};
 
 /// Options of `march3d`.
@@ -27,7 +28,8 @@ pub(crate) struct Options {
     /// CPU threads (0 = all cores).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
-    /// CPU instruction set: scalar, avx2 or neon (default: the widest available).
+    /// CPU instruction set of the tracer: scalar, avx2 or neon (default: the widest
+    /// available, capped by CRATERFIELD_BACKEND).
     #[arg(long)]
     pub isa: Option<String>,
     /// `paper` (the reference renderer's settings: every object every step), `all` (every
@@ -136,22 +138,19 @@ fn run_inner(o: &Options) -> Result<(), String> {
     };
     let (rgba, what) = match o.backend.as_str() {
         "cpu" => {
-            let isa = match &o.isa {
-                Some(name) => Some(name.parse::<Isa>().map_err(|e| e.to_string())?),
+            let backend = match &o.isa {
+                Some(name) => Some(name.parse::<Backend>().map_err(|e| e.to_string())?),
                 None => None,
             };
             let topts = TraceOptions {
                 threads: o.threads,
-                isa,
+                backend,
                 ..TraceOptions::default()
             };
             let start = Instant::now();
             let img =
                 cpu::render(&plan, &camera, size.0, size.1, &topts).map_err(|e| e.to_string())?;
-            let isa = isa.map_or_else(
-                || Isa::best().map(|i| i.name()).unwrap_or("?"),
-                |i| i.name(),
-            );
+            let isa = backend.unwrap_or_else(simd::best);
             let threads = if o.threads == 0 {
                 std::thread::available_parallelism().map_or(1, |n| n.get())
             } else {

@@ -12,9 +12,9 @@ use std::collections::VecDeque;
 use glam::Vec2;
 use thiserror::Error;
 
+use crate::backend::{Backend, BackendError};
 use crate::det::math::{cos_turns, sin_turns};
 use crate::field2d::event::{Event, EventKind};
-use crate::field2d::simd::{Backend, BackendError};
 use crate::field2d::tape::EvalError;
 use crate::field2d::terrain::{RollbackError, TerrainMark};
 use crate::field2d::{Graph, Level, Sample, Sdf, Terrain, TerrainError};

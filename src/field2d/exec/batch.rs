@@ -3,8 +3,9 @@
 use glam::Vec2;
 
 use super::{Dv, Fv, Val, load_points, run_tape};
+use crate::backend::Backend;
 use crate::field2d::sample::{MaterialId, Sample};
-use crate::field2d::simd::{self, Backend, Kernel, Lanes};
+use crate::field2d::simd::{self, Kernel, Lanes};
 use crate::field2d::tape::{EvalError, MatOut, Tape, check};
 
 /// The per-backend scratch of a block: coordinates and registers.

@@ -3,15 +3,17 @@
 use std::arch::x86_64::*;
 
 use super::{Kernel, Lanes};
+use crate::backend::Backend;
 
 /// The AVX2 backend's token; it exists only where the CPU has AVX2.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Avx2(());
 
 impl Avx2 {
-    /// The token, if this CPU has AVX2.
+    /// The token, if this CPU has AVX2 (and FMA3, which this backend leaves unused: see
+    /// `crate::backend`).
     pub(super) fn new() -> Option<Avx2> {
-        is_x86_feature_detected!("avx2").then_some(Avx2(()))
+        Backend::Avx2.is_available().then_some(Avx2(()))
     }
 
     /// Runs `k` in a function compiled with AVX2 enabled.

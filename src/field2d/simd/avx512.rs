@@ -4,6 +4,7 @@
 use std::arch::x86_64::*;
 
 use super::{Kernel, Lanes};
+use crate::backend::Backend;
 
 /// The AVX-512 backend's token; it exists only where the CPU has AVX-512F.
 #[derive(Clone, Copy, Debug)]
@@ -12,7 +13,7 @@ pub(super) struct Avx512(());
 impl Avx512 {
     /// The token, if this CPU has AVX-512F.
     pub(super) fn new() -> Option<Avx512> {
-        is_x86_feature_detected!("avx512f").then_some(Avx512(()))
+        Backend::Avx512.is_available().then_some(Avx512(()))
     }
 
     /// Runs `k` in a function compiled with AVX-512F enabled.

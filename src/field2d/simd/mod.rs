@@ -14,16 +14,12 @@
 //! float-to-int conversion saturates with NaN giving 0 (Rust's `as i32`). No FMA, no
 //! estimates, no horizontal reductions: a lane computes what the scalar code computes.
 //!
-//! Choosing: [`Backend::best`] picks the widest available set, unless the environment
-//! variable `CRATERFIELD_BACKEND` (`scalar`, `sse2`, `avx2`, `avx512`, `neon`) names one;
-//! APIs also take an explicit [`Backend`]. Building with the feature `force-scalar` makes
-//! the scalar backend the only one.
+//! Choosing: this stack has code for every [`Backend`]; detection, the default choice
+//! ([`Backend::best`], capped by the environment variable `CRATERFIELD_BACKEND`) and the
+//! errors are shared with the 3D tracer's lanes in [`crate::backend`]. Building with the
+//! feature `force-scalar` makes the scalar backend the only one.
 
-use std::fmt;
-use std::str::FromStr;
-use std::sync::OnceLock;
-
-use thiserror::Error;
+use crate::backend::{Backend, BackendError};
 
 pub(crate) mod scalar;
 
@@ -35,9 +31,6 @@ mod avx512;
 mod neon;
 #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
 mod sse2;
-
-/// The environment variable that forces a backend.
-pub const BACKEND_ENV: &str = "CRATERFIELD_BACKEND";
 
 /// The operations of one register of `f32` lanes. See the module doc for the semantics.
 pub trait Lanes: Copy + Send + Sync + 'static {
@@ -132,159 +125,6 @@ pub trait Lanes: Copy + Send + Sync + 'static {
     fn bits_int(self, f: Self::F) -> Self::I;
 }
 
-/// An instruction set the evaluator can run on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Backend {
-    /// One lane, plain Rust; every platform.
-    Scalar,
-    /// 4 lanes, x86_64 baseline.
-    Sse2,
-    /// 8 lanes, x86_64 with AVX2 (no FMA is used).
-    Avx2,
-    /// 16 lanes, x86_64 with AVX-512F.
-    Avx512,
-    /// 4 lanes, aarch64 Advanced SIMD.
-    Neon,
-}
-
-/// A backend that this CPU (or this build) cannot run, or a name no backend has.
-#[derive(Clone, Debug, PartialEq, Eq, Error)]
-#[non_exhaustive]
-pub enum BackendError {
-    /// The backend exists but this CPU or build lacks it.
-    #[error("backend {backend} is not available on this machine (available: {available})")]
-    Unavailable {
-        /// The backend asked for.
-        backend: Backend,
-        /// What is available, comma-separated.
-        available: String,
-    },
-    /// The name is not a backend.
-    #[error("unknown backend `{name}` (expected scalar, sse2, avx2, avx512 or neon)")]
-    UnknownName {
-        /// The name given.
-        name: String,
-    },
-}
-
-impl Backend {
-    /// Every backend, narrowest first.
-    pub const ALL: [Backend; 5] = [
-        Backend::Scalar,
-        Backend::Sse2,
-        Backend::Avx2,
-        Backend::Avx512,
-        Backend::Neon,
-    ];
-
-    /// The lowercase name (`scalar`, `sse2`, `avx2`, `avx512`, `neon`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Backend::Scalar => "scalar",
-            Backend::Sse2 => "sse2",
-            Backend::Avx2 => "avx2",
-            Backend::Avx512 => "avx512",
-            Backend::Neon => "neon",
-        }
-    }
-
-    /// Lanes per register.
-    pub fn width(self) -> usize {
-        match self {
-            Backend::Scalar => 1,
-            Backend::Sse2 | Backend::Neon => 4,
-            Backend::Avx2 => 8,
-            Backend::Avx512 => 16,
-        }
-    }
-
-    /// Whether this machine and build can run the backend.
-    pub fn is_available(self) -> bool {
-        match self {
-            Backend::Scalar => true,
-            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-            Backend::Sse2 => sse2::Sse2::new().is_some(),
-            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-            Backend::Avx2 => avx2::Avx2::new().is_some(),
-            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-            Backend::Avx512 => avx512::Avx512::new().is_some(),
-            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
-            Backend::Neon => neon::Neon::new().is_some(),
-            #[allow(unreachable_patterns)]
-            _ => false,
-        }
-    }
-
-    /// The backends this machine can run, narrowest first.
-    pub fn available() -> Vec<Backend> {
-        Backend::ALL
-            .into_iter()
-            .filter(|b| b.is_available())
-            .collect()
-    }
-
-    /// `Ok(self)` if available, else an error listing what is.
-    pub fn check(self) -> Result<Backend, BackendError> {
-        if self.is_available() {
-            Ok(self)
-        } else {
-            Err(unavailable(self))
-        }
-    }
-
-    /// The widest available backend.
-    pub fn widest() -> Backend {
-        Backend::available()
-            .into_iter()
-            .max_by_key(|b| b.width())
-            .unwrap_or(Backend::Scalar)
-    }
-
-    /// The backend to use by default: the one named by `CRATERFIELD_BACKEND` if set, else
-    /// the widest available. Read once per process. A name that is unknown or unavailable
-    /// here is reported on standard error once and the widest is used instead.
-    pub fn best() -> Backend {
-        static CHOSEN: OnceLock<Backend> = OnceLock::new();
-        *CHOSEN.get_or_init(|| match std::env::var(BACKEND_ENV) {
-            Ok(name) => match name.parse::<Backend>().and_then(Backend::check) {
-                Ok(b) => b,
-                Err(e) => {
-                    eprintln!("{BACKEND_ENV}: {e}; using {}", Backend::widest());
-                    Backend::widest()
-                }
-            },
-            Err(_) => Backend::widest(),
-        })
-    }
-}
-
-impl fmt::Display for Backend {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Backend {
-    type Err = BackendError;
-    fn from_str(s: &str) -> Result<Backend, BackendError> {
-        Backend::ALL
-            .into_iter()
-            .find(|b| b.name() == s.trim().to_ascii_lowercase())
-            .ok_or_else(|| BackendError::UnknownName { name: s.into() })
-    }
-}
-
-fn unavailable(backend: Backend) -> BackendError {
-    BackendError::Unavailable {
-        backend,
-        available: Backend::available()
-            .iter()
-            .map(|b| b.name())
-            .collect::<Vec<_>>()
-            .join(", "),
-    }
-}
-
 /// Work generic over the lanes: [`run`] instantiates it for a backend. `run` (the method)
 /// must be `#[inline(always)]`, and so must everything it calls that touches lanes: the
 /// SIMD backends call it from a function compiled with their instruction set enabled, and
@@ -333,25 +173,7 @@ pub(crate) fn run<K: Kernel>(backend: Backend, k: K) -> Result<K::Output, Backen
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_round_trip_and_scalar_is_always_there() {
-        for b in Backend::ALL {
-            assert_eq!(b.name().parse::<Backend>(), Ok(b));
-        }
-        assert!(Backend::Scalar.is_available());
-        assert!(Backend::available().contains(&Backend::Scalar));
-        let e = "mmx".parse::<Backend>().unwrap_err();
-        assert!(e.to_string().contains("mmx"), "{e}");
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[test]
-    fn neon_is_unavailable_on_x86() {
-        let e = Backend::Neon.check().unwrap_err().to_string();
-        assert!(e.contains("neon") && e.contains("scalar"), "{e}");
-    }
+/// The error for a backend whose token could not be made.
+fn unavailable(backend: Backend) -> BackendError {
+    backend.unavailable_to(&Backend::ALL)
 }

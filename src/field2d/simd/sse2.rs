@@ -5,6 +5,7 @@
 use std::arch::x86_64::*;
 
 use super::{Kernel, Lanes};
+use crate::backend::Backend;
 
 /// The SSE2 backend's token.
 #[derive(Clone, Copy, Debug)]
@@ -13,7 +14,7 @@ pub(super) struct Sse2(());
 impl Sse2 {
     /// The token (SSE2 is part of x86_64, but it is still detected, like every backend).
     pub(super) fn new() -> Option<Sse2> {
-        is_x86_feature_detected!("sse2").then_some(Sse2(()))
+        Backend::Sse2.is_available().then_some(Sse2(()))
     }
 
     /// Runs `k` in a function compiled with SSE2 enabled (as all x86_64 code is).

@@ -1,6 +1,6 @@
 //! Why a tape evaluation could not run: the one error of every evaluator of a tape.
 
-use crate::field2d::simd::BackendError;
+use crate::backend::BackendError;
 
 /// Why a batch evaluation could not run.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]

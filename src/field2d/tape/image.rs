@@ -12,7 +12,7 @@
 use glam::Vec2;
 
 use super::{EvalError, Outputs, Program, Tape};
-use crate::field2d::simd::Backend;
+use crate::backend::Backend;
 
 /// How to render.
 #[derive(Clone, Debug, PartialEq)]

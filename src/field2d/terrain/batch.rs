@@ -12,13 +12,14 @@ use glam::Vec2;
 
 use super::Terrain;
 use super::cell_tapes::{CellTape, CellTapes};
+use crate::backend::{Backend, BackendError};
 use crate::field2d::event::EventKind;
 use crate::field2d::exec::batch::Block;
 use crate::field2d::exec::value::clamp;
 use crate::field2d::exec::{Dv, Fv, P2, Val};
 use crate::field2d::sample::{MaterialId, Sample};
 use crate::field2d::sdf::Sdf;
-use crate::field2d::simd::{self, Backend, BackendError, Kernel, Lanes};
+use crate::field2d::simd::{self, Kernel, Lanes};
 use crate::field2d::tape::check;
 use crate::field2d::tape::{EvalError, MatOut};
 use crate::field2d::terrain::grid::{self, CellState, MaterialSource, Rect};

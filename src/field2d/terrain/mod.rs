@@ -87,7 +87,7 @@ use glam::Vec2;
 
 use super::event::{Event, EventKind};
 use super::sdf::Sdf;
-use super::simd::Backend;
+use crate::backend::Backend;
 use cell_tapes::CellTapes;
 pub use error::TerrainError;
 pub use grid::{

@@ -27,7 +27,8 @@ use self::eval::Tally;
 use self::lanes::V3;
 use self::shade::{Frame, MAX_WIDTH, camera_rays, shade};
 use super::simd::count::{self, Counting};
-use super::simd::{Isa, IsaError, Pack, PackKernel};
+use super::simd::{self, Pack, PackKernel};
+use crate::backend::{Backend, BackendError};
 use crate::emit::plan3d::{Camera3d, Plan, PlanError};
 
 /// The longest image side accepted.
@@ -40,8 +41,8 @@ pub const MAX_PIXELS: u64 = 64 * 1024 * 1024;
 pub struct TraceOptions {
     /// Worker threads; 0 means every core.
     pub threads: usize,
-    /// The instruction set; `None` means [`Isa::best`].
-    pub isa: Option<Isa>,
+    /// The instruction set; `None` means [`simd::best`].
+    pub backend: Option<Backend>,
     /// The side of the square tiles threads take, in pixels.
     pub tile: u32,
 }
@@ -50,7 +51,7 @@ impl Default for TraceOptions {
     fn default() -> Self {
         TraceOptions {
             threads: 0,
-            isa: None,
+            backend: None,
             tile: 32,
         }
     }
@@ -127,9 +128,9 @@ pub enum TraceError {
     /// The plan has a value the renderers cannot use.
     #[error("bad plan: {0}")]
     BadPlan(#[from] PlanError),
-    /// The instruction set is not available.
+    /// The backend is not available, or the tracer has no code for it.
     #[error(transparent)]
-    Isa(#[from] IsaError),
+    Backend(#[from] BackendError),
 }
 
 /// Renders `plan` seen by `camera` at `width x height`.
@@ -144,14 +145,13 @@ pub fn render(
     if opts.tile == 0 {
         return Err(TraceError::BadTile);
     }
-    let isa = match opts.isa {
-        Some(isa) if !isa.available() => return Err(IsaError::Unavailable(isa).into()),
-        Some(isa) => isa,
-        None => Isa::best()?,
+    let backend = match opts.backend {
+        Some(backend) => simd::check(backend)?,
+        None => simd::best(),
     };
     let frame = Frame::new(plan, camera, width, height);
     let (img, _) = run_threads(&frame, opts.threads, opts.tile, |job| {
-        isa.run(job).map_err(TraceError::from)
+        simd::run(backend, job).map_err(TraceError::from)
     })?;
     Ok(img)
 }

@@ -4,6 +4,7 @@
 use std::arch::x86_64::*;
 
 use super::{Pack, PackKernel};
+use crate::backend::Backend;
 
 /// The AVX2+FMA backend's token; it exists only where the CPU has both.
 #[derive(Clone, Copy, Debug)]
@@ -12,7 +13,7 @@ pub(super) struct Avx2(());
 impl Avx2 {
     /// The token, if this CPU has AVX2 and FMA.
     pub(super) fn new() -> Option<Avx2> {
-        (is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma")).then_some(Avx2(()))
+        Backend::Avx2.is_available().then_some(Avx2(()))
     }
 }
 

@@ -10,14 +10,12 @@
 //! runtime detection, which is what makes their intrinsics sound; `unsafe` lives only in the
 //! per-architecture files.
 //!
-//! Choosing: [`Isa::best`] picks AVX2+FMA (8 lanes) on x86_64 or NEON (4 lanes) on aarch64,
-//! else the scalar path; `CRATERFIELD_MARCH_ISA` (`scalar`, `avx2`, `neon`) forces one, and
-//! the `force-scalar` feature compiles only the scalar path.
+//! Choosing: [`best`] picks AVX2+FMA (8 lanes) on x86_64 or NEON (4 lanes) on aarch64, else
+//! the scalar path. Detection, the environment variable `CRATERFIELD_BACKEND` that caps the
+//! choice, and the errors are shared with the 2D field's lanes in [`crate::backend`]; the
+//! `force-scalar` feature compiles only the scalar path.
 
-use std::fmt;
-use std::str::FromStr;
-
-use thiserror::Error;
+use crate::backend::{Backend, BackendError};
 
 pub(crate) mod count;
 pub(crate) mod scalar;
@@ -28,9 +26,6 @@ mod tests;
 mod avx2;
 #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
 mod neon;
-
-/// The environment variable that forces an instruction set for the tracer.
-pub const ISA_ENV: &str = "CRATERFIELD_MARCH_ISA";
 
 /// Work generic over a [`Pack`], run by [`Pack::call`] inside a function compiled for the
 /// backend's instruction set (so that every `#[inline(always)]` lane operation inlines).
@@ -178,109 +173,36 @@ pub trait Pack: Copy + Send + Sync + 'static {
     }
 }
 
-/// An instruction set the tracer can run on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Isa {
-    /// One lane, plain Rust; every platform.
-    Scalar,
-    /// 8 lanes, x86_64 with AVX2 and FMA.
-    Avx2,
-    /// 4 lanes, aarch64 Advanced SIMD (with fused multiply-add).
-    Neon,
+/// The backends the tracer has code for (the others fall back as [`crate::backend`] says).
+pub const TRACER_BACKENDS: [Backend; 3] = [Backend::Scalar, Backend::Avx2, Backend::Neon];
+
+/// What [`Backend::check_of`] and the errors call the tracer.
+const TRACER: &str = "the CPU sphere tracer";
+
+/// The tracer's default backend: the widest of [`TRACER_BACKENDS`] available here, capped
+/// by `CRATERFIELD_BACKEND`.
+pub fn best() -> Backend {
+    Backend::best_of(&TRACER_BACKENDS)
 }
 
-/// An instruction set this machine or build lacks, or a name none has.
-#[derive(Clone, Debug, PartialEq, Eq, Error)]
-#[non_exhaustive]
-pub enum IsaError {
-    /// The set exists but this CPU or build lacks it.
-    #[error("instruction set {0} is not available on this machine")]
-    Unavailable(Isa),
-    /// The name is not an instruction set.
-    #[error("unknown instruction set `{0}` (expected scalar, avx2 or neon)")]
-    UnknownName(String),
+/// `Ok(backend)` if the tracer has code for it and it is available here.
+pub fn check(backend: Backend) -> Result<Backend, BackendError> {
+    backend.check_of(&TRACER_BACKENDS, TRACER)
 }
 
-impl Isa {
-    /// The lowercase name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Isa::Scalar => "scalar",
-            Isa::Avx2 => "avx2",
-            Isa::Neon => "neon",
-        }
-    }
-
-    /// Lanes per register.
-    pub fn width(self) -> usize {
-        match self {
-            Isa::Scalar => 1,
-            Isa::Avx2 => 8,
-            Isa::Neon => 4,
-        }
-    }
-
-    /// Whether this machine and build can run it.
-    pub fn available(self) -> bool {
-        match self {
-            Isa::Scalar => true,
-            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-            Isa::Avx2 => avx2::Avx2::new().is_some(),
-            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
-            Isa::Neon => neon::Neon::new().is_some(),
-            #[allow(unreachable_patterns)]
-            _ => false,
-        }
-    }
-
-    /// The widest available set, unless [`ISA_ENV`] names one.
-    pub fn best() -> Result<Isa, IsaError> {
-        if let Ok(name) = std::env::var(ISA_ENV) {
-            let isa: Isa = name.parse()?;
-            return if isa.available() {
-                Ok(isa)
-            } else {
-                Err(IsaError::Unavailable(isa))
-            };
-        }
-        Ok([Isa::Avx2, Isa::Neon]
-            .into_iter()
-            .find(|i| i.available())
-            .unwrap_or(Isa::Scalar))
-    }
-
-    /// Runs `k` on this instruction set.
-    pub fn run<K: PackKernel>(self, k: K) -> Result<K::Output, IsaError> {
-        match self {
-            Isa::Scalar => Ok(scalar::Scalar.call(k)),
-            #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
-            Isa::Avx2 => avx2::Avx2::new()
-                .map(|p| p.call(k))
-                .ok_or(IsaError::Unavailable(self)),
-            #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
-            Isa::Neon => neon::Neon::new()
-                .map(|p| p.call(k))
-                .ok_or(IsaError::Unavailable(self)),
-            #[allow(unreachable_patterns)]
-            _ => Err(IsaError::Unavailable(self)),
-        }
-    }
-}
-
-impl fmt::Display for Isa {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Isa {
-    type Err = IsaError;
-    fn from_str(s: &str) -> Result<Isa, IsaError> {
-        match s {
-            "scalar" => Ok(Isa::Scalar),
-            "avx2" => Ok(Isa::Avx2),
-            "neon" => Ok(Isa::Neon),
-            other => Err(IsaError::UnknownName(other.to_string())),
-        }
+/// Runs `k` on `backend`: the one place that turns a [`Backend`] value into tracer code.
+pub fn run<K: PackKernel>(backend: Backend, k: K) -> Result<K::Output, BackendError> {
+    match backend {
+        Backend::Scalar => Ok(scalar::Scalar.call(k)),
+        #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+        Backend::Avx2 => avx2::Avx2::new()
+            .map(|p| p.call(k))
+            .ok_or_else(|| backend.unavailable_to(&TRACER_BACKENDS)),
+        #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
+        Backend::Neon => neon::Neon::new()
+            .map(|p| p.call(k))
+            .ok_or_else(|| backend.unavailable_to(&TRACER_BACKENDS)),
+        #[allow(unreachable_patterns)]
+        _ => check(backend).and_then(|b| Err(b.unavailable_to(&TRACER_BACKENDS))),
     }
 }

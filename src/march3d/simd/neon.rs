@@ -5,6 +5,7 @@
 use std::arch::aarch64::*;
 
 use super::{Pack, PackKernel};
+use crate::backend::Backend;
 
 /// The NEON backend's token; it exists only where the CPU has Advanced SIMD.
 #[derive(Clone, Copy, Debug)]
@@ -13,7 +14,7 @@ pub struct Neon(());
 impl Neon {
     /// The token, if this CPU has NEON (every aarch64 Linux CPU does; still detected).
     pub fn new() -> Option<Neon> {
-        std::arch::is_aarch64_feature_detected!("neon").then_some(Neon(()))
+        Backend::Neon.is_available().then_some(Neon(()))
     }
 }
 

@@ -5,7 +5,8 @@
 
 use super::count::{self, Counting};
 use super::scalar::Scalar;
-use super::{Isa, Pack, PackKernel};
+use super::{Pack, PackKernel, TRACER_BACKENDS};
+use crate::backend::{BACKEND_ENV, Backend, BackendError};
 use crate::march3d::math;
 
 /// Floats that break careless lane code: signed zeros, infinities, NaN, subnormals, the
@@ -525,24 +526,25 @@ fn every_lane_operation_matches_plain_arithmetic_on_every_backend() {
 #[test]
 fn every_available_isa_runs_kernels() {
     let n = Inputs::new();
-    for isa in [Isa::Scalar, Isa::Avx2, Isa::Neon] {
-        match isa.run(OpsKernel(n.clone())) {
+    for isa in Backend::ALL {
+        match super::run(isa, OpsKernel(n.clone())) {
             Ok(got) => {
-                assert!(isa.available(), "{isa} ran but says it is unavailable");
+                assert!(isa.is_available(), "{isa} ran but says it is unavailable");
                 check_columns(isa.name(), isa.width(), &n, &got);
             }
-            Err(e) => {
-                assert!(!isa.available(), "{isa} is available but failed: {e}");
-                assert_eq!(e, super::IsaError::Unavailable(isa));
+            Err(e) if TRACER_BACKENDS.contains(&isa) => {
+                assert!(!isa.is_available(), "{isa} is available but failed: {e}");
+                assert!(matches!(e, BackendError::Unavailable { backend, .. } if backend == isa));
             }
+            Err(e) => assert!(matches!(e, BackendError::Unsupported { .. }), "{isa}: {e}"),
         }
     }
-    if std::env::var_os(super::ISA_ENV).is_none() {
-        let best = Isa::best().expect("some instruction set is always available");
-        assert!(best.available());
+    if std::env::var_os(BACKEND_ENV).is_none() {
+        let best = super::best();
+        assert!(best.is_available());
         // The best is the widest available.
-        for isa in [Isa::Avx2, Isa::Neon] {
-            assert!(!isa.available() || best.width() >= isa.width());
+        for isa in TRACER_BACKENDS {
+            assert!(!isa.is_available() || best.width() >= isa.width());
         }
     }
 }
@@ -556,8 +558,8 @@ fn each_backend_reports_its_own_width() {
             P::WIDTH
         }
     }
-    for isa in [Isa::Scalar, Isa::Avx2, Isa::Neon] {
-        if let Ok(w) = isa.run(Width) {
+    for isa in TRACER_BACKENDS {
+        if let Ok(w) = super::run(isa, Width) {
             assert_eq!(w, isa.width(), "{isa}");
         }
     }
