@@ -7,6 +7,7 @@ mod common;
 mod emit_support;
 
 use common::Rng;
+use common::gpu::TestResult;
 use craterfield::emit::TerrainEmitter;
 use craterfield::field2d::{Aabb, Graph, Sample, Sdf};
 use craterfield::gpu::GpuContext;
@@ -20,13 +21,6 @@ const POINTS: usize = 3000;
 const NEAR: f32 = 24.0;
 /// Offset of the neighbours that tell whether the CPU gradient is well defined at a point.
 const PROBE: f32 = 4e-3;
-
-/// The library's headless device (the adapter wgpu finds; `WGPU_BACKEND` chooses).
-type Gpu = GpuContext;
-
-fn gpu() -> Option<Gpu> {
-    GpuContext::new().ok()
-}
 
 const ENTRY: &str = "
 @group(0) @binding(0) var<storage, read> points: array<vec2<f32>>;
@@ -42,7 +36,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
 ";
 
 /// `base_sample` of `emitted` at every point, computed on the GPU.
-fn gpu_samples(gpu: &Gpu, name: &str, emitted: &str, points: &[Vec2]) -> Vec<[f32; 4]> {
+fn gpu_samples(gpu: &GpuContext, name: &str, emitted: &str, points: &[Vec2]) -> Vec<[f32; 4]> {
     let device = &gpu.device;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -194,7 +188,7 @@ fn compare(name: &str, graph: &Graph, points: &[Vec2], gpu: &[[f32; 4]]) -> (f32
     (worst, compared)
 }
 
-fn check(gpu: &Gpu, name: &str, graph: &Graph, region: &Aabb, view: Option<Aabb>) {
+fn check(gpu: &GpuContext, name: &str, graph: &Graph, region: &Aabb, view: Option<Aabb>) {
     let emitter = TerrainEmitter::new(graph);
     let plan = emitter.plan(view, 32.0);
     let wgsl = emitter.emit(&plan);
@@ -210,18 +204,20 @@ fn check(gpu: &Gpu, name: &str, graph: &Graph, region: &Aabb, view: Option<Aabb>
     );
 }
 
-fn emitted_levels_match_the_cpu_on_the_gpu(gpu: &Gpu) {
+fn emitted_levels_match_the_cpu_on_the_gpu(gpu: &GpuContext) -> TestResult {
     for (name, graph, bounds) in example_levels() {
         check(gpu, &name, &graph, &bounds, None);
     }
+    Ok(())
 }
 
-fn the_every_variant_graph_matches_the_cpu_on_the_gpu(gpu: &Gpu) {
+fn the_every_variant_graph_matches_the_cpu_on_the_gpu(gpu: &GpuContext) -> TestResult {
     let bounds = every_variant_bounds();
     check(gpu, "every variant", &every_variant_graph(), &bounds, None);
+    Ok(())
 }
 
-fn the_culled_default_level_matches_the_cpu_inside_its_view(gpu: &Gpu) {
+fn the_culled_default_level_matches_the_cpu_inside_its_view(gpu: &GpuContext) -> TestResult {
     let (_, graph, _) = example_levels().remove(0);
     let view = Aabb::new(Vec2::ZERO, Vec2::new(1920.0, 1080.0));
     check(
@@ -231,12 +227,13 @@ fn the_culled_default_level_matches_the_cpu_inside_its_view(gpu: &Gpu) {
         &view,
         Some(view),
     );
+    Ok(())
 }
 
-fn the_prospero_expression_runs_on_the_gpu(gpu: &Gpu) {
+fn the_prospero_expression_runs_on_the_gpu(gpu: &GpuContext) -> TestResult {
     let Some(graph) = prospero_graph() else {
         println!("prospero.vm not found: only the level graphs ran");
-        return;
+        return Ok(());
     };
     let region = Aabb::new(Vec2::splat(-1.0), Vec2::splat(1.0));
     let emitter = TerrainEmitter::new(&graph);
@@ -259,16 +256,11 @@ fn the_prospero_expression_runs_on_the_gpu(gpu: &Gpu) {
             s.distance
         );
     }
+    Ok(())
 }
 
-/// Runs every test on the adapter wgpu finds. Without one each test reports itself
-/// ignored (never passed); with `CI` set a missing adapter fails instead.
-/// A test body run on the GPU.
-type GpuTest = fn(&Gpu);
-
 fn main() {
-    let args = libtest_mimic::Arguments::from_args();
-    let tests: [(&str, GpuTest); 4] = [
+    common::gpu::run(&[
         (
             "emitted_levels_match_the_cpu_on_the_gpu",
             emitted_levels_match_the_cpu_on_the_gpu,
@@ -285,31 +277,5 @@ fn main() {
             "the_prospero_expression_runs_on_the_gpu",
             the_prospero_expression_runs_on_the_gpu,
         ),
-    ];
-    let gpu = std::sync::Arc::new(gpu());
-    let ci = std::env::var_os("CI").is_some();
-    let trials = tests
-        .into_iter()
-        .map(|(name, test)| {
-            let gpu = gpu.clone();
-            let missing = gpu.is_none();
-            libtest_mimic::Trial::test(name, move || match gpu.as_ref() {
-                Some(gpu) => {
-                    println!("adapter: {}", gpu.describe());
-                    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| test(gpu)))
-                        .map_err(|e| panic_message(e).into())
-                }
-                None => Err("no GPU adapter, and CI is set: GPU tests must run in CI".into()),
-            })
-            .with_ignored_flag(missing && !ci)
-        })
-        .collect();
-    libtest_mimic::run(&args, trials).exit();
-}
-
-fn panic_message(e: Box<dyn std::any::Any + Send>) -> String {
-    e.downcast_ref::<String>()
-        .cloned()
-        .or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string()))
-        .unwrap_or_else(|| "test panicked".into())
+    ]);
 }

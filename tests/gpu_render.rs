@@ -2,12 +2,14 @@
 //! against the CPU twin for every mode and scale, golden images, the pipeline cache, and the
 //! incremental explosion-grid uploads.
 //!
-//! Runs with its own harness so that a machine without an adapter reports every test as
-//! ignored (never as passed); with `CI` set a missing adapter fails instead.
+//! Runs on the shared GPU harness (`common::gpu`): a machine without an adapter reports every
+//! test as ignored (never as passed); with `CI` set a missing adapter fails instead.
+
+mod common;
 
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex, OnceLock};
 
+use common::gpu::TestResult;
 use craterfield::field2d::{Event, Graph, Level, Terrain};
 use craterfield::gpu::READBACK_FORMAT;
 use craterfield::gpu::{GpuContext, GpuError};
@@ -20,26 +22,7 @@ use craterfield::render2d::{
 use craterfield::visdiff::{DiffOptions, DiffReport, check_golden, compare};
 use glam::Vec2;
 use image::RgbaImage;
-use libtest_mimic::{Arguments, Failed, Trial};
-
-type TestResult = Result<(), Failed>;
-type GpuTest = fn(&GpuContext) -> TestResult;
-
-fn context() -> Option<Arc<Mutex<GpuContext>>> {
-    static CONTEXT: OnceLock<Option<Arc<Mutex<GpuContext>>>> = OnceLock::new();
-    CONTEXT
-        .get_or_init(|| match GpuContext::new() {
-            Ok(ctx) => {
-                eprintln!("GPU adapter: {}", ctx.describe());
-                Some(Arc::new(Mutex::new(ctx)))
-            }
-            Err(e) => {
-                eprintln!("no GPU adapter: {e}");
-                None
-            }
-        })
-        .clone()
-}
+use libtest_mimic::Failed;
 
 /// A level with a few hundred deterministic explosions and fills, so the grid has lists,
 /// air and brick cells.
@@ -624,8 +607,7 @@ fn resizing_reallocates_and_matches_a_fresh_renderer(ctx: &GpuContext) -> TestRe
 }
 
 fn main() {
-    let args = Arguments::from_args();
-    let tests: [(&str, GpuTest); 11] = [
+    common::gpu::run(&[
         (
             "refine_matches_exact_and_twin",
             refine_matches_exact_and_twin,
@@ -658,22 +640,5 @@ fn main() {
             "resizing_reallocates_and_matches_a_fresh_renderer",
             resizing_reallocates_and_matches_a_fresh_renderer,
         ),
-    ];
-    let ci = std::env::var_os("CI").is_some();
-    let available = context().is_some();
-    let trials = tests
-        .into_iter()
-        .map(|(name, f)| {
-            Trial::test(name, move || match context() {
-                Some(ctx) => {
-                    let ctx = ctx.lock().map_err(|_| "GPU context poisoned")?;
-                    f(&ctx)
-                }
-                None if ci => Err("no GPU adapter, and CI is set: GPU tests must run in CI".into()),
-                None => Err("no GPU adapter".into()),
-            })
-            .with_ignored_flag(!available && !ci)
-        })
-        .collect();
-    libtest_mimic::run(&args, trials).exit();
+    ]);
 }

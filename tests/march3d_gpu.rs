@@ -2,14 +2,15 @@
 //! rendered on the GPU against the CPU tracer with the visual diff, the shader cache, the
 //! caller's-encoder path, and errors for bad input.
 //!
-//! Runs with its own harness so that a machine without an adapter reports every test as
-//! ignored (never as passed); with `CI` set a missing adapter fails instead.
+//! Runs on the shared GPU harness (`common::gpu`): a machine without an adapter reports every
+//! test as ignored (never as passed); with `CI` set a missing adapter fails instead.
 
+mod common;
 mod march3d_plans;
 
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex, OnceLock};
 
+use common::gpu::TestResult;
 use craterfield::emit::plan3d::Plan;
 use craterfield::gpu::GpuContext;
 use craterfield::march3d::compile::{CompileOptions, emit};
@@ -18,31 +19,11 @@ use craterfield::march3d::gpu::{MarchGpuError, Marcher};
 use craterfield::march3d::scene::{BUILTIN, Lighting, Scene};
 use craterfield::visdiff::{DiffOptions, compare};
 use image::RgbaImage;
-use libtest_mimic::{Arguments, Failed, Trial};
 use march3d_plans::all_plans;
-
-type TestResult = Result<(), Failed>;
-type GpuTest = fn(&GpuContext) -> TestResult;
 
 /// Small images: lavapipe runs the shader on the CPU and the paper scenes march up to 3000
 /// steps per ray.
 const SIZE: (u32, u32) = (256, 144);
-
-fn context() -> Option<Arc<Mutex<GpuContext>>> {
-    static CONTEXT: OnceLock<Option<Arc<Mutex<GpuContext>>>> = OnceLock::new();
-    CONTEXT
-        .get_or_init(|| match GpuContext::new() {
-            Ok(ctx) => {
-                eprintln!("GPU adapter: {}", ctx.describe());
-                Some(Arc::new(Mutex::new(ctx)))
-            }
-            Err(e) => {
-                eprintln!("no GPU adapter: {e}");
-                None
-            }
-        })
-        .clone()
-}
 
 /// Where the tests leave their pictures for people to look at.
 fn out_dir() -> PathBuf {
@@ -283,8 +264,7 @@ fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
 }
 
 fn main() {
-    let args = Arguments::from_args();
-    let tests: [(&str, GpuTest); 5] = [
+    common::gpu::run(&[
         ("gpu_matches_the_cpu_tracer", gpu_matches_the_cpu_tracer),
         ("every_plan_renders", every_plan_renders),
         (
@@ -296,23 +276,5 @@ fn main() {
             encoding_into_the_callers_texture_matches,
         ),
         ("bad_input_is_an_error", bad_input_is_an_error),
-    ];
-    let ctx = context();
-    let ci = std::env::var_os("CI").is_some();
-    let trials = tests
-        .into_iter()
-        .map(|(name, test)| {
-            let ctx = ctx.clone();
-            let missing = ctx.is_none();
-            Trial::test(name, move || match ctx {
-                Some(ctx) => {
-                    let ctx = ctx.lock().unwrap_or_else(|e| e.into_inner());
-                    test(&ctx)
-                }
-                None => Err("no GPU adapter, and CI is set: GPU tests must run in CI".into()),
-            })
-            .with_ignored_flag(missing && !ci)
-        })
-        .collect();
-    libtest_mimic::run(&args, trials).exit();
+    ]);
 }

@@ -1,6 +1,10 @@
 //! Helpers shared by the integration tests: the one deterministic pseudo-random generator
-//! (SplitMix64, no dependency) and scripted inputs. Each test binary uses part of it.
+//! (SplitMix64, no dependency), scripted inputs, and the one GPU test harness (`gpu`). Each
+//! test binary uses part of it.
 #![allow(dead_code)]
+
+#[cfg(feature = "gpu")]
+pub(crate) mod gpu;
 
 use craterfield::field2d::Aabb;
 use craterfield::sim::Input;
