@@ -16,7 +16,7 @@
 //!   `min(a, b)` (a select, so `-0.0` survives); `smax` likewise with `max` and `+`.
 //!
 //! One generic routine computes this over `f32` ([`Sdf::distance`]) and over
-//! [`Dual`] ([`Sdf::sample`]), so both give the same distance bits.
+//! [`Dual`](crate::det::math::Dual) ([`Sdf::sample`]), so both give the same distance bits.
 //!
 //! # Why the grid is exact
 //!

@@ -8,7 +8,7 @@ use super::error::TerrainError;
 use super::grid::Grid;
 use super::limits::{MAX_BRICK_BYTES, MAX_COORD};
 
-/// Tuning and limits of a [`Terrain`].
+/// Tuning and limits of a [`Terrain`](super::Terrain).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TerrainOptions {
     /// Side of a grid cell, world units.
