@@ -172,8 +172,10 @@ impl Backend {
     }
 
     /// The backend to use by default: the widest available, capped by [`BACKEND_ENV`].
+    /// Chosen once per process.
     pub fn best() -> Backend {
-        Backend::best_of(&Backend::ALL)
+        static BEST: OnceLock<Backend> = OnceLock::new();
+        *BEST.get_or_init(|| Backend::best_of(&Backend::ALL))
     }
 
     /// The default backend of an evaluator that has code for `implemented`: the widest of

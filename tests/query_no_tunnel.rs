@@ -508,3 +508,98 @@ fn queries_are_bit_deterministic() {
     };
     assert_eq!(run(), run());
 }
+
+/// A cratered terrain: a wavy ground, two islands and a floating box, carved by explosions
+/// and patched by a few fills, so that rays cross air, untouched base, crater and brick cells.
+fn cratered_terrain(
+    seed: u64,
+    events: usize,
+) -> craterfield::field2d::Terrain<craterfield::field2d::Graph> {
+    use craterfield::field2d::{Event, Graph, Node, Terrain, TerrainOptions};
+    let heights = (0..=256)
+        .map(|i| 200.0 + 40.0 * (i as f32 / 12.0).sin())
+        .collect();
+    let root = Node::Union(vec![
+        Node::HeightProfile {
+            x0: 0.0,
+            dx: 4.0,
+            heights,
+        },
+        Node::Circle {
+            center: [300.0, 380.0],
+            radius: 40.0,
+        },
+        Node::Circle {
+            center: [760.0, 420.0],
+            radius: 25.0,
+        },
+        Node::Box {
+            center: [520.0, 330.0],
+            half_size: [60.0, 8.0],
+        },
+    ]);
+    let graph = Graph::compile(&root, &Default::default()).expect("the scene compiles");
+    let options = TerrainOptions {
+        cell_cap: 8,
+        ..TerrainOptions::default()
+    };
+    let mut terrain =
+        Terrain::new(graph, Vec2::ZERO, Vec2::new(1024.0, 512.0), options).expect("a terrain");
+    let mut state = seed;
+    let mut next = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    };
+    for k in 0..events {
+        let center = Vec2::new(next() * 1024.0, 120.0 + next() * 340.0);
+        let radius = 8.0 + next() * 40.0;
+        let event = if k % 10 == 9 {
+            Event::fill(center, radius * 0.5, 0)
+        } else {
+            Event::carve(center, radius)
+        };
+        terrain
+            .apply(event.expect("a valid event"))
+            .expect("applied");
+    }
+    terrain
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    /// Rays over a cratered terrain (air, untouched base, crater and brick cells, and the
+    /// base alone outside the grid) stop at the first crossing: dense sampling of the
+    /// terrain's own field finds none before the hit (nor any, when there is no hit).
+    #[test]
+    fn raycasts_over_a_cratered_terrain_never_tunnel(
+        seed in 0u64..4,
+        // Inside the level, around it in the grid, and outside the grid (which reaches
+        // 609 units past the level).
+        origin in (-900.0f32..1900.0, -900.0f32..1400.0),
+        angle in 0.0f32..std::f32::consts::TAU,
+        length in 1.0f32..2500.0,
+    ) {
+        thread_local! {
+            static TERRAINS: Vec<craterfield::field2d::Terrain<craterfield::field2d::Graph>> =
+                (0..4).map(|s| cratered_terrain(s, 400)).collect();
+        }
+        TERRAINS.with(|terrains| {
+            let terrain = &terrains[seed as usize];
+            let (origin, dir) = (Vec2::new(origin.0, origin.1), Vec2::from_angle(angle));
+            let hit = raycast(terrain, origin, dir, length, &OPTS).map_err(|e| TestCaseError::fail(e.to_string()))?;
+            let end = hit.map_or(length, |h| h.t);
+            let step = 0.05f32;
+            let mut s = 0.0f32;
+            while s + 0.01 < end {
+                let d = terrain.distance(origin + dir * s);
+                prop_assert!(d > 0.0, "the field is {d} at s = {s}, before the reported end {end}");
+                s += step;
+            }
+            Ok(())
+        })?;
+    }
+}
