@@ -33,9 +33,16 @@ struct Report {
     bricks: BTreeMap<String, usize>,
     points: usize,
     rays: usize,
+    /// `--peers`: craterfield against polygon terrain on a game-like level.
+    #[cfg(feature = "peers")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    peers: Option<crate::bench_field_peers::Comparison>,
 }
 
-pub(crate) fn field(json: bool, points: usize) -> Result<ExitCode, String> {
+pub(crate) fn field(json: bool, points: usize, peers: bool) -> Result<ExitCode, String> {
+    if peers && !cfg!(feature = "peers") {
+        return Err("--peers needs the polygon peers: build with `--features peers`".into());
+    }
     let level = Level::default_level();
     let points = points.clamp(1_000, 50_000_000);
     let rays = (points / 20).max(100);
@@ -48,6 +55,8 @@ pub(crate) fn field(json: bool, points: usize) -> Result<ExitCode, String> {
         bricks: BTreeMap::new(),
         points,
         rays,
+        #[cfg(feature = "peers")]
+        peers: None,
     };
     let b = level.bounds();
     let mut rng = Rng::new(99);
@@ -102,6 +111,10 @@ pub(crate) fn field(json: bool, points: usize) -> Result<ExitCode, String> {
         std::hint::black_box(hits);
     }
 
+    #[cfg(feature = "peers")]
+    if peers {
+        report.peers = Some(crate::bench_field_peers::compare(points, rays)?);
+    }
     if json {
         println!(
             "{}",
@@ -131,6 +144,11 @@ pub(crate) fn field(json: bool, points: usize) -> Result<ExitCode, String> {
             "explosion insert, median while building 10,000: {:.2} us",
             report.insert_us_median
         );
+        #[cfg(feature = "peers")]
+        if let Some(c) = &report.peers {
+            println!();
+            crate::bench_field_peers::print(c);
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

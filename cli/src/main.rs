@@ -5,16 +5,22 @@ mod barrage;
 mod bench;
 mod bench_eval;
 mod bench_fidelity;
+#[cfg(feature = "peers")]
+mod bench_field_peers;
 mod bench_march3d;
 mod bench_render2d;
 mod bench_sim;
 mod demo;
 mod diff_cmd;
 mod fidelity_scenes;
+#[cfg(feature = "peers")]
+mod field_scene;
 mod frame;
 mod march3d_cmd;
 #[cfg(feature = "peers")]
 mod peers;
+#[cfg(feature = "peers")]
+mod peers_field;
 mod render_cmd;
 mod render_frame;
 mod replay_cmd;
@@ -141,6 +147,10 @@ enum BenchCommand {
         /// Query points per configuration.
         #[arg(long, default_value_t = 400_000)]
         points: usize,
+        /// Also compare with polygon terrain (i_overlay inserts, an edge grid and parry2d
+        /// queries) on a 4096x1024 level with 10,000 explosions; needs the feature `peers`.
+        #[arg(long)]
+        peers: bool,
     },
     /// The tape evaluators on every backend (and fidget with the feature `peers`).
     Eval {
@@ -216,8 +226,13 @@ fn main() -> ExitCode {
         Command::Render(options) => render_cmd::run(&options),
         Command::March3d(options) => march3d_cmd::run(&options),
         Command::Bench {
-            command: BenchCommand::Field { json, points },
-        } => bench::field(json, points),
+            command:
+                BenchCommand::Field {
+                    json,
+                    points,
+                    peers,
+                },
+        } => bench::field(json, points, peers),
         Command::Bench {
             command:
                 BenchCommand::Eval {

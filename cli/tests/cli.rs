@@ -122,6 +122,20 @@ fn bench_field_json_has_the_documented_keys() {
     assert!(cap <= 48, "{v}");
 }
 
+/// Without the polygon peers compiled in, `--peers` says how to get them instead of
+/// printing a table without them (the suite builds the CLI without the feature).
+#[test]
+#[cfg(not(feature = "peers"))]
+fn bench_field_peers_without_the_feature_says_how_to_build_it() {
+    let out = craterfield()
+        .args(["bench", "field", "--peers", "--points", "1000"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--features peers"), "{err}");
+}
+
 /// Ticks of the small demo match the replay tests share.
 const MATCH_TICKS: u32 = 300;
 

@@ -1,0 +1,297 @@
+//! `craterfield bench field --peers`: craterfield against the polygon terrain a game would
+//! otherwise keep, on the same level, the same explosions, points and rays, in one run
+//! (`field_scene` makes the inputs, `peers_field` the polygon side; feature `peers`).
+//!
+//! Inserts: per-explosion time (median, p95, p99, max, total). Queries, one thread, at 0,
+//! 1,000 and 10,000 explosions: single-point distance, distance + gradient and inside on
+//! points uniform in the level and near the ground, batch distances, and raycasts.
+
+use std::time::Instant;
+
+use craterfield::field2d::query::{RayOptions, inside, raycast};
+use craterfield::field2d::{Event, Graph, Sdf, Terrain};
+use glam::Vec2;
+use serde::Serialize;
+
+use crate::field_scene::{self, Blast};
+use crate::peers_field::{EdgeGrid, ParryPolyline, PolygonTerrain};
+
+/// Explosions after which the queries are timed.
+const CHECKPOINTS: [usize; 3] = [0, 1_000, 10_000];
+const EVENT_SEED: u64 = 0x5eed_f1e1d;
+
+/// Per-insert times of one implementation, microseconds.
+#[derive(Serialize)]
+pub(crate) struct Inserts {
+    median_us: f64,
+    p95_us: f64,
+    p99_us: f64,
+    max_us: f64,
+    total_ms: f64,
+}
+
+impl Inserts {
+    fn of(mut us: Vec<f64>) -> Inserts {
+        us.sort_by(f64::total_cmp);
+        let at = |q: f64| {
+            us.get(((us.len() as f64 * q) as usize).min(us.len().saturating_sub(1)))
+                .copied()
+                .unwrap_or(0.0)
+        };
+        Inserts {
+            median_us: at(0.5),
+            p95_us: at(0.95),
+            p99_us: at(0.99),
+            max_us: us.last().copied().unwrap_or(0.0),
+            total_ms: us.iter().sum::<f64>() * 1e-3,
+        }
+    }
+}
+
+/// Millions of queries per second of one implementation at one checkpoint.
+#[derive(Serialize, Default)]
+pub(crate) struct Queries {
+    explosions: usize,
+    implementation: String,
+    distance_uniform: Option<f64>,
+    distance_near: Option<f64>,
+    gradient_uniform: Option<f64>,
+    gradient_near: Option<f64>,
+    inside_uniform: Option<f64>,
+    batch_distance_uniform: Option<f64>,
+    raycast: Option<f64>,
+}
+
+/// The whole comparison.
+#[derive(Serialize)]
+pub(crate) struct Comparison {
+    points: usize,
+    rays: usize,
+    inserts: Vec<(String, Inserts)>,
+    queries: Vec<Queries>,
+    /// Per checkpoint: the share of uniform points (more than one unit from craterfield's
+    /// surface) where the polygon terrain's inside/outside disagrees with craterfield's.
+    sign_mismatch: Vec<(usize, f64)>,
+}
+
+/// Million operations per second of `f` over `items`.
+fn mops<T>(items: &[T], mut f: impl FnMut(&T) -> f32) -> f64 {
+    let t = Instant::now();
+    let mut acc = 0.0f32;
+    for item in items {
+        acc += f(item);
+    }
+    std::hint::black_box(acc);
+    items.len() as f64 / t.elapsed().as_secs_f64() * 1e-6
+}
+
+fn carve_timed(terrain: &mut Terrain<Graph>, b: &Blast) -> Result<f64, String> {
+    let event = Event::carve(b.center, b.radius).map_err(|e| e.to_string())?;
+    let t = Instant::now();
+    terrain.apply(event).map_err(|e| e.to_string())?;
+    Ok(t.elapsed().as_secs_f64() * 1e6)
+}
+
+struct Inputs {
+    uniform: Vec<Vec2>,
+    /// Points near the surface at the checkpoint being timed.
+    near: Vec<Vec2>,
+    rays: Vec<field_scene::Ray>,
+}
+
+fn craterfield_queries(
+    terrain: &Terrain<Graph>,
+    explosions: usize,
+    inputs: &Inputs,
+) -> Result<Queries, String> {
+    let opts = RayOptions::default();
+    let mut out = vec![0.0f32; inputs.uniform.len()];
+    let t = Instant::now();
+    terrain
+        .distances(&inputs.uniform, &mut out)
+        .map_err(|e| e.to_string())?;
+    let batch = inputs.uniform.len() as f64 / t.elapsed().as_secs_f64() * 1e-6;
+    Ok(Queries {
+        explosions,
+        implementation: "craterfield".into(),
+        distance_uniform: Some(mops(&inputs.uniform, |&p| terrain.distance(p))),
+        distance_near: Some(mops(&inputs.near, |&p| terrain.distance(p))),
+        gradient_uniform: Some(mops(&inputs.uniform, |&p| terrain.sample(p).gradient.x)),
+        gradient_near: Some(mops(&inputs.near, |&p| terrain.sample(p).gradient.x)),
+        inside_uniform: Some(mops(&inputs.uniform, |&p| {
+            f32::from(u8::from(inside(terrain, p).unwrap_or(false)))
+        })),
+        batch_distance_uniform: Some(batch),
+        raycast: Some(mops(&inputs.rays, |r| {
+            raycast(terrain, r.origin, r.dir, r.length, &opts)
+                .ok()
+                .flatten()
+                .map_or(0.0, |h| h.t)
+        })),
+    })
+}
+
+/// The share of `points` more than one unit from `terrain`'s surface where `grid` puts the
+/// other side: checks that both sides hold the same terrain.
+fn sign_mismatch(terrain: &Terrain<Graph>, grid: &EdgeGrid, points: &[Vec2]) -> f64 {
+    let (mut compared, mut differ) = (0usize, 0usize);
+    for &p in points {
+        let d = terrain.distance(p);
+        if d.abs() > 1.0 {
+            compared += 1;
+            differ += usize::from((d < 0.0) != (grid.distance(p) < 0.0));
+        }
+    }
+    differ as f64 / compared.max(1) as f64
+}
+
+fn peer_queries(
+    terrain: &Terrain<Graph>,
+    polygons: &PolygonTerrain,
+    explosions: usize,
+    inputs: &Inputs,
+    mismatches: &mut Vec<(usize, f64)>,
+) -> [Queries; 2] {
+    let edges = polygons.edges();
+    let grid = EdgeGrid::new(edges.clone());
+    let parry = ParryPolyline::new(&edges);
+    mismatches.push((explosions, sign_mismatch(terrain, &grid, &inputs.uniform)));
+    [
+        Queries {
+            explosions,
+            implementation: "edge grid".into(),
+            distance_uniform: Some(mops(&inputs.uniform, |&p| grid.distance(p))),
+            distance_near: Some(mops(&inputs.near, |&p| grid.distance(p))),
+            gradient_uniform: Some(mops(&inputs.uniform, |&p| grid.sample(p).1.x)),
+            gradient_near: Some(mops(&inputs.near, |&p| grid.sample(p).1.x)),
+            inside_uniform: Some(mops(&inputs.uniform, |&p| {
+                f32::from(u8::from(grid.distance(p) < 0.0))
+            })),
+            ..Queries::default()
+        },
+        Queries {
+            explosions,
+            implementation: "parry2d Polyline".into(),
+            distance_uniform: Some(mops(&inputs.uniform, |&p| parry.distance(p))),
+            distance_near: Some(mops(&inputs.near, |&p| parry.distance(p))),
+            raycast: Some(mops(&inputs.rays, |r| {
+                parry.raycast(r.origin, r.dir, r.length).unwrap_or(0.0)
+            })),
+            ..Queries::default()
+        },
+    ]
+}
+
+/// Runs the comparison with `points` query points and `rays` rays per checkpoint.
+pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> {
+    let blasts = field_scene::blasts(EVENT_SEED, *CHECKPOINTS.last().unwrap_or(&0));
+    let mut terrain = field_scene::terrain()?;
+    let mut inputs = Inputs {
+        uniform: field_scene::uniform_points(11, points),
+        near: Vec::new(),
+        rays: field_scene::rays(13, rays),
+    };
+    let mut chunked = PolygonTerrain::new(true);
+    let mut whole = PolygonTerrain::new(false);
+    let (mut ours, mut chunk_us, mut whole_us) = (Vec::new(), Vec::new(), Vec::new());
+    let mut queries = Vec::new();
+    let mut mismatches = Vec::new();
+    for (k, b) in blasts.iter().enumerate() {
+        if CHECKPOINTS.contains(&k) {
+            eprintln!("  queries after {k} explosions");
+            inputs.near = field_scene::near_points(&terrain, 12, points);
+            queries.push(craterfield_queries(&terrain, k, &inputs)?);
+            queries.extend(peer_queries(&terrain, &whole, k, &inputs, &mut mismatches));
+        }
+        ours.push(carve_timed(&mut terrain, b)?);
+        let t = Instant::now();
+        chunked.carve(b.center, b.radius);
+        chunk_us.push(t.elapsed().as_secs_f64() * 1e6);
+        let t = Instant::now();
+        whole.carve(b.center, b.radius);
+        whole_us.push(t.elapsed().as_secs_f64() * 1e6);
+    }
+    let last = blasts.len();
+    eprintln!("  queries after {last} explosions");
+    inputs.near = field_scene::near_points(&terrain, 12, points);
+    queries.push(craterfield_queries(&terrain, last, &inputs)?);
+    queries.extend(peer_queries(
+        &terrain,
+        &whole,
+        last,
+        &inputs,
+        &mut mismatches,
+    ));
+    Ok(Comparison {
+        points,
+        rays,
+        inserts: vec![
+            ("craterfield".into(), Inserts::of(ours)),
+            ("i_overlay, 256-unit chunks".into(), Inserts::of(chunk_us)),
+            ("i_overlay, whole level".into(), Inserts::of(whole_us)),
+        ],
+        queries,
+        sign_mismatch: mismatches,
+    })
+}
+
+fn cell(v: Option<f64>) -> String {
+    v.map_or_else(|| "-".into(), |v| format!("{v:.2}"))
+}
+
+/// Prints the comparison as tables.
+pub(crate) fn print(c: &Comparison) {
+    println!(
+        "bench field --peers: 4096x1024 level, {} explosions (r 20..60), one thread; polygon peers on the same inputs",
+        CHECKPOINTS.last().unwrap_or(&0)
+    );
+    println!(
+        "{:<28} {:>10} {:>10} {:>10} {:>10} {:>10}",
+        "inserts", "median us", "p95 us", "p99 us", "max us", "total ms"
+    );
+    for (name, i) in &c.inserts {
+        println!(
+            "{name:<28} {:>10.2} {:>10.2} {:>10.2} {:>10.1} {:>10.1}",
+            i.median_us, i.p95_us, i.p99_us, i.max_us, i.total_ms
+        );
+    }
+    println!(
+        "queries, M/s ({} points uniform in the level or within 16 units of the surface, {} rays of length 2000)",
+        c.points, c.rays
+    );
+    println!(
+        "{:>10} {:<18} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "explosions",
+        "implementation",
+        "dist uni",
+        "dist near",
+        "grad uni",
+        "grad near",
+        "inside",
+        "batch",
+        "raycast"
+    );
+    for q in &c.queries {
+        println!(
+            "{:>10} {:<18} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+            q.explosions,
+            q.implementation,
+            cell(q.distance_uniform),
+            cell(q.distance_near),
+            cell(q.gradient_uniform),
+            cell(q.gradient_near),
+            cell(q.inside_uniform),
+            cell(q.batch_distance_uniform),
+            cell(q.raycast)
+        );
+    }
+    println!(
+        "parry2d's distance is unsigned (a polyline has no inside); the edge grid clamps at 64 units, craterfield at its band (32)"
+    );
+    for (explosions, share) in &c.sign_mismatch {
+        println!(
+            "same terrain on both sides after {explosions} explosions: inside/outside differs at {:.3}% of the uniform points more than 1 unit from the surface (32-gon explosions, 1/16-unit coordinates)",
+            share * 100.0
+        );
+    }
+}
