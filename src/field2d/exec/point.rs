@@ -40,6 +40,15 @@ pub(crate) fn value(tape: &Tape, p: Vec2) -> (f32, MaterialId) {
     })
 }
 
+/// The material at `p` alone: read off the tape where it is one constant, else from the
+/// value path (whose selections are the dual path's, so the material is the same).
+pub(crate) fn material(tape: &Tape, p: Vec2) -> MaterialId {
+    match tape.material {
+        MatOut::Const(m) => m,
+        MatOut::Value(_) => value(tape, p).1,
+    }
+}
+
 /// The value with its gradient, and the material, at `p`.
 pub(crate) fn dual(tape: &Tape, p: Vec2) -> (Dual, MaterialId) {
     DUAL.with(|regs| {

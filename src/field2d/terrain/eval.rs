@@ -8,6 +8,7 @@ use super::Terrain;
 use super::field::{Lift, apply_event};
 use super::grid::{CellState, MaterialSource};
 use crate::det::math::{Dual, max, nclamp};
+use crate::field2d::exec;
 use crate::field2d::sample::{MaterialId, Sample};
 use crate::field2d::sdf::Sdf;
 
@@ -23,7 +24,7 @@ impl<F: Sdf> Terrain<F> {
             let plan = cell_tapes.get(&self.grid, cell);
             if let Some(c) = plan.clamped {
                 let mat = if MAT || N::MATERIAL {
-                    N::tape(plan, p, true).1
+                    exec::point::material(&plan.material, p)
                 } else {
                     0
                 };
@@ -48,6 +49,16 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
+    /// The base's material at `p` (in `cell`), without its distance or gradient.
+    fn base_material_at(&self, p: Vec2, cell: Option<usize>) -> MaterialId {
+        match &self.cell_tapes {
+            Some(cell_tapes) => {
+                exec::point::material(&cell_tapes.get(&self.grid, cell).material, p)
+            }
+            None => self.base.distance_material(p).1,
+        }
+    }
+
     /// The field at `p` in `cell` from the cell's state and the first `upto` listed events.
     pub(super) fn eval_cell<N: Lift, const MAT: bool>(
         &self,
@@ -65,7 +76,7 @@ impl<F: Sdf> Terrain<F> {
             CellState::Air(src) => {
                 let mat = if N::MATERIAL || MAT {
                     match src {
-                        MaterialSource::Base => self.base_at::<N>(p, Some(cell), true).1,
+                        MaterialSource::Base => self.base_material_at(p, Some(cell)),
                         MaterialSource::Constant(m) => m,
                         MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
                     }
