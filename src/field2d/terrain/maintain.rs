@@ -5,7 +5,6 @@
 
 use super::Terrain;
 use super::grid::{self, Brick, CellState, MaterialSource};
-use crate::det::math::Dual;
 use crate::det::quant::FIXED_ONE;
 use crate::field2d::event::{Event, EventKind};
 use crate::field2d::sdf::Sdf;
@@ -193,8 +192,8 @@ impl<F: Sdf> Terrain<F> {
             for j in 0..=n {
                 for i in 0..=n {
                     let q = self.grid.lattice_point(cell, i, j);
-                    let (d, m) = self.eval_cell::<Dual, true>(q, cell, prefix);
-                    brick.values.push(d.v);
+                    let (d, m) = self.eval_cell::<f32, true>(q, cell, prefix);
+                    brick.values.push(d);
                     brick.materials.push(m);
                 }
             }
