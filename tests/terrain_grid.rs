@@ -695,3 +695,78 @@ fn brick_memory_is_bounded_up_front() {
         "{msg}"
     );
 }
+
+/// A level graph seen only through its point queries (no tape program): the terrain over it
+/// evaluates and bakes point by point with the graph walker.
+struct Walked<'a>(&'a craterfield::field2d::Graph);
+
+impl Sdf for Walked<'_> {
+    fn distance(&self, p: Vec2) -> f32 {
+        self.0.distance(p)
+    }
+    fn sample(&self, p: Vec2) -> Sample {
+        self.0.sample(p)
+    }
+    fn distance_material(&self, p: Vec2) -> (f32, u16) {
+        self.0.distance_material(p)
+    }
+    fn lipschitz(&self) -> f32 {
+        self.0.lipschitz()
+    }
+}
+
+/// Every brick of `terrain`, cell by cell: its values' bits and its materials.
+fn bricks<F: Sdf>(terrain: &Terrain<F>) -> Vec<(usize, Vec<u32>, Vec<u16>)> {
+    let grid = terrain.grid();
+    grid.cells()
+        .enumerate()
+        .filter_map(|(i, c)| match c.state() {
+            CellState::Brick(id) => grid.brick_samples(id).map(|(v, m)| {
+                (i, v.iter().map(|x| x.to_bits()).collect(), m.to_vec())
+            }),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Bricks are baked on the SIMD lanes where the base has tapes: on every backend they hold
+/// the bits the point path (the graph walker, one lattice point at a time) bakes.
+#[test]
+fn bricks_are_the_same_bits_on_every_backend_and_on_the_point_path() {
+    let level = craterfield::field2d::Level::default_level();
+    let b = level.bounds();
+    let options = TerrainOptions {
+        cell_cap: 6,
+        ..level.terrain_options()
+    };
+    let mut rng = Rng(0xbac0);
+    let events: Vec<Event> = (0..1500)
+        .map(|i| {
+            let c = Vec2::new(
+                b.min.x + rng.unit() * (b.max.x - b.min.x),
+                b.min.y + rng.unit() * (b.max.y - b.min.y) * 0.6,
+            );
+            let r = 10.0 + rng.unit() * 50.0;
+            if i % 7 == 6 {
+                Event::fill(c, r * 0.5, 1).expect("a fill")
+            } else {
+                Event::carve(c, r).expect("a carve")
+            }
+        })
+        .collect();
+    let walked = Walked(level.graph());
+    let mut reference = Terrain::new(&walked, b.min, b.max, options).expect("a terrain");
+    for e in &events {
+        reference.apply(*e).expect("applied");
+    }
+    let expected = bricks(&reference);
+    assert!(expected.len() > 20, "only {} bricks", expected.len());
+    for backend in craterfield::backend::Backend::available() {
+        let mut t = Terrain::new(level.graph().clone(), b.min, b.max, options).expect("a terrain");
+        t.set_backend(backend).expect("available");
+        for e in &events {
+            t.apply(*e).expect("applied");
+        }
+        assert!(bricks(&t) == expected, "{backend} baked other bits");
+    }
+}

@@ -169,6 +169,34 @@ impl<F: Sdf> Terrain<F> {
         Ok(())
     }
 
+    /// The values and materials of `cell`'s field from its state and its first `upto`
+    /// events at `points` (a brick's lattice), on the lanes of the terrain's backend:
+    /// bit-identical to the point path (`eval_cell` on values with materials), which it
+    /// replaces where the base has tapes. `false` (nothing written) where it has none.
+    pub(super) fn bake_lattice(
+        &self,
+        cell: usize,
+        upto: usize,
+        points: &[Vec2],
+        values: &mut [f32],
+        materials: &mut [MaterialId],
+    ) -> bool {
+        let Some(cell_tapes) = &self.cell_tapes else {
+            return false;
+        };
+        let bake = Bake {
+            t: self,
+            cell_tapes,
+            cell,
+            upto,
+            points,
+            values,
+            materials,
+        };
+        // The backend was checked when it was set, so this does not fail.
+        simd::run(self.backend, bake).is_ok()
+    }
+
     /// What both batch queries do first: check the lengths, answer every point one at a
     /// time when the base has no tapes (`None`), else answer the NaN points (whose result
     /// is fixed) and group the rest by cell.
@@ -226,9 +254,14 @@ impl<F: Sdf> Terrain<F> {
     /// The cell's events in order with their constants at the current tick (events not
     /// yet started are left out: they change nothing).
     fn prepared_events(&self, cell: Option<usize>, out: &mut Vec<Prepared>) {
+        self.prepared_prefix(cell, usize::MAX, out);
+    }
+
+    /// [`Terrain::prepared_events`] of the first `upto` listed events only.
+    fn prepared_prefix(&self, cell: Option<usize>, upto: usize, out: &mut Vec<Prepared>) {
         out.clear();
         let list = cell.and_then(|c| self.grid.cells.get(c));
-        for e in list.into_iter().flat_map(|c| c.events.iter()) {
+        for e in list.into_iter().flat_map(|c| c.events.iter().take(upto)) {
             let Some(e) = self.events.get(*e as usize) else {
                 continue;
             };
@@ -471,6 +504,93 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                             gradient: Vec2::new(gx[k], gy[k]),
                             material: mat_lanes[k] as MaterialId,
                         };
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A brick's lattice: see [`Terrain::bake_lattice`].
+struct Bake<'a, F: Sdf> {
+    t: &'a Terrain<F>,
+    cell_tapes: &'a CellTapes,
+    cell: usize,
+    upto: usize,
+    points: &'a [Vec2],
+    values: &'a mut [f32],
+    materials: &'a mut [MaterialId],
+}
+
+impl<F: Sdf> Kernel for Bake<'_, F> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
+        let t = self.t;
+        let band = t.options.band;
+        let cell = Some(self.cell);
+        let start = t.start(self.cell_tapes, cell, true);
+        let mut events = Vec::new();
+        t.prepared_prefix(cell, self.upto, &mut events);
+        let mut block: Option<Block<L, Fv<L>, NB>> = None;
+        let mut tape_mats = [0 as MaterialId; 16];
+        let (mut v, mut mat_lanes) = ([0.0f32; 16], [0i32; 16]);
+        let step = NB * L::WIDTH;
+        for (chunk, pts) in self.points.chunks(step).enumerate() {
+            let mut ps = [P2::new(Fv::cst(l, 0.0), Fv::cst(l, 0.0)); NB];
+            for (r, p) in ps.iter_mut().enumerate() {
+                *p = lane_point(l, pts, r);
+            }
+            let mut ds = [Fv::cst(l, band); NB];
+            let mut mats = [l.splat_i(0); NB];
+            match &start {
+                Start::Base(plan) | Start::AirFromBase(plan) => {
+                    let tape = &plan.material;
+                    let b = block.get_or_insert_with(|| Block::new(l, tape));
+                    b.run(l, tape, pts);
+                    let base = matches!(start, Start::Base(_));
+                    for r in 0..NB {
+                        b.materials(l, tape, r, &mut tape_mats);
+                        mats[r] = l.load_i(&tape_mats.map(i32::from));
+                        if base {
+                            ds[r] = match plan.clamped {
+                                Some(c) => Fv::cst(l, c),
+                                None => clamp(l, b.get(tape.value, r), -band, band),
+                            };
+                        }
+                    }
+                }
+                Start::Constant(c, m) => {
+                    ds = [Fv::cst(l, *c); NB];
+                    mats = [l.splat_i(i32::from(m.unwrap_or(0))); NB];
+                }
+                Start::AirFromBrick(id) | Start::Brick(id) => {
+                    let baked = matches!(start, Start::Brick(_));
+                    for r in 0..NB {
+                        let (d, m) = brick(l, t, *id, cell, ps[r], true);
+                        if baked {
+                            ds[r] = d;
+                        }
+                        mats[r] = m;
+                    }
+                }
+            }
+            for e in &events {
+                for r in 0..NB {
+                    (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
+                }
+            }
+            for r in 0..NB {
+                l.store(ds[r].0, &mut v);
+                l.store_i(mats[r], &mut mat_lanes);
+                let first = chunk * step + r * L::WIDTH;
+                for k in 0..L::WIDTH {
+                    if let (Some(value), Some(material)) = (
+                        self.values.get_mut(first + k),
+                        self.materials.get_mut(first + k),
+                    ) {
+                        *value = v[k];
+                        *material = mat_lanes[k] as MaterialId;
                     }
                 }
             }

@@ -163,6 +163,34 @@ impl<F: Sdf> Terrain<F> {
         self.grid.stats.pruned += pruned;
     }
 
+    /// The brick of `cell`'s state and its first `prefix` events: its field at the
+    /// `(n+1) x (n+1)` lattice, on the SIMD lanes where the base has tapes (the same bits
+    /// as the point path, which does it otherwise).
+    fn bake(&self, cell: usize, prefix: usize) -> Brick {
+        let n = self.grid.brick_resolution();
+        let points: Vec<_> = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| (i, j)))
+            .map(|(i, j)| self.grid.lattice_point(cell, i, j))
+            .collect();
+        let mut brick = Brick {
+            values: vec![0.0; points.len()],
+            materials: vec![0; points.len()],
+        };
+        if !self.bake_lattice(
+            cell,
+            prefix,
+            &points,
+            &mut brick.values,
+            &mut brick.materials,
+        ) {
+            for (k, &q) in points.iter().enumerate() {
+                (brick.values[k], brick.materials[k]) =
+                    self.eval_cell::<f32, true>(q, cell, prefix);
+            }
+        }
+        brick
+    }
+
     /// Bakes the longest settled prefix of an over-long list into a brick.
     pub(super) fn compact(&mut self, cell: usize) {
         let cap = self.options.cell_cap;
@@ -183,20 +211,7 @@ impl<F: Sdf> Terrain<F> {
             })
             .count();
         if prefix > 0 {
-            let n = self.grid.brick_resolution();
-            let count = ((n + 1) * (n + 1)) as usize;
-            let mut brick = Brick {
-                values: Vec::with_capacity(count),
-                materials: Vec::with_capacity(count),
-            };
-            for j in 0..=n {
-                for i in 0..=n {
-                    let q = self.grid.lattice_point(cell, i, j);
-                    let (d, m) = self.eval_cell::<f32, true>(q, cell, prefix);
-                    brick.values.push(d);
-                    brick.materials.push(m);
-                }
-            }
+            let brick = self.bake(cell, prefix);
             let id = self.grid.store_brick(cell, brick);
             self.grid.set_state(cell, CellState::Brick(id));
             if let Some(c) = self.grid.cells.get_mut(cell) {
