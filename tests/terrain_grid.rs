@@ -721,9 +721,9 @@ fn bricks<F: Sdf>(terrain: &Terrain<F>) -> Vec<(usize, Vec<u32>, Vec<u16>)> {
     grid.cells()
         .enumerate()
         .filter_map(|(i, c)| match c.state() {
-            CellState::Brick(id) => grid.brick_samples(id).map(|(v, m)| {
-                (i, v.iter().map(|x| x.to_bits()).collect(), m.to_vec())
-            }),
+            CellState::Brick(id) => grid
+                .brick_samples(id)
+                .map(|(v, m)| (i, v.iter().map(|x| x.to_bits()).collect(), m.to_vec())),
             _ => None,
         })
         .collect()

@@ -194,18 +194,25 @@ impl EdgeGrid {
     pub(crate) fn sample(&self, p: Vec2) -> (f32, Vec2) {
         let cell = self.cell(p);
         let (a, b) = self.spans[cell];
-        let mut best = (CLAMP * CLAMP, Vec2::ZERO, 0.0f32);
+        // (squared distance, nearest point, side of that edge, distance to the edge's line)
+        let mut best = (CLAMP * CLAMP, Vec2::ZERO, 0.0f32, 0.0f32);
         for &k in &self.lists[a as usize..b as usize] {
             let [s, t] = self.edges[k as usize];
             let d = t - s;
             let h = ((p - s).dot(d) / d.length_squared()).clamp(0.0, 1.0);
             let q = s + d * h;
             let d2 = (p - q).length_squared();
-            if d2 < best.0 {
-                best = (d2, q, d.perp_dot(p - s));
+            let side = d.perp_dot(p - s);
+            let off_line = side.abs() / d.length();
+            // Where two edges meet at the nearest point (a vertex), the side of the one whose
+            // line the point is farther from is the true side (the other's line may cut the
+            // corner's wedge).
+            let tie = d2 <= best.0 * (1.0 + 1e-5) && d2 >= best.0 * (1.0 - 1e-5);
+            if d2 < best.0 * (1.0 - 1e-5) || (tie && off_line > best.3) {
+                best = (d2, q, side, off_line);
             }
         }
-        let (d2, q, side) = best;
+        let (d2, q, side, _) = best;
         if d2 >= CLAMP * CLAMP {
             let sign = if self.inside[cell] { -1.0 } else { 1.0 };
             return (sign * CLAMP, Vec2::ZERO);

@@ -39,8 +39,9 @@ pub(crate) fn run(tests: &[(&'static str, GpuTest)]) -> ! {
         .iter()
         .map(|&(name, test)| {
             Trial::test(name, move || match context() {
-                // A test that panicked while holding the context leaves it usable: wgpu
-                // state is not shared between tests beyond the device.
+                // A test that panicked while holding the context poisons the lock; the next
+                // test takes the context anyway (the device is all they share, though a
+                // panic inside an error scope leaves that scope pushed on it).
                 Some(ctx) => test(&ctx.lock().unwrap_or_else(|e| e.into_inner())),
                 None if ci => Err("no GPU adapter, and CI is set: GPU tests must run in CI".into()),
                 None => Err("no GPU adapter".into()),

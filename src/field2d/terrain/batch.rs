@@ -107,12 +107,13 @@ enum Start<'a> {
 }
 
 impl<F: Sdf> Terrain<F> {
-    /// The backend of the batch queries (by default [`Backend::best`]).
+    /// The backend of the batch queries and of brick baking (by default [`Backend::best`]).
     pub fn backend(&self) -> Backend {
         self.backend
     }
 
-    /// Chooses the backend of the batch queries; results do not depend on it.
+    /// Chooses the backend of the batch queries and of brick baking; results do not depend
+    /// on it (bricks included), only the time they take.
     pub fn set_backend(&mut self, backend: Backend) -> Result<(), BackendError> {
         self.backend = backend.check()?;
         Ok(())
@@ -181,9 +182,19 @@ impl<F: Sdf> Terrain<F> {
         values: &mut [f32],
         materials: &mut [MaterialId],
     ) -> bool {
+        debug_assert!(values.len() == points.len() && materials.len() == points.len());
         let Some(cell_tapes) = &self.cell_tapes else {
             return false;
         };
+        // A brick state whose brick is missing falls back to the base on the point path;
+        // the lanes would not (it cannot happen: the grid keeps every brick it lists).
+        let brick = match self.grid.cells.get(cell).map(|c| c.state.0) {
+            Some(CellState::Brick(id) | CellState::Air(MaterialSource::Brick(id))) => Some(id),
+            _ => None,
+        };
+        if brick.is_some_and(|id| self.grid.brick(id).is_none()) {
+            return false;
+        }
         let bake = Bake {
             t: self,
             cell_tapes,
@@ -641,7 +652,7 @@ fn lane_point<L: Lanes, V: Val<L>>(l: L, pts: &[Vec2], r: usize) -> P2<V> {
     P2::new(V::px(l, l.load(&x)), V::py(l, l.load(&y)))
 }
 
-/// `terrain::smin` (`max = false`) and `terrain::smax` (`max = true`).
+/// `terrain::field::smin` (`max = false`) and `terrain::field::smax` (`max = true`).
 #[inline(always)]
 fn smooth<L: Lanes, V: Val<L>>(l: L, a: V, b: V, k: f32, max: bool) -> V {
     let m = if max { a.max(l, b) } else { a.min(l, b) };
@@ -664,7 +675,7 @@ struct Prepared {
     material: MaterialId,
 }
 
-/// `terrain::apply_event` on lanes.
+/// `terrain::field::apply_event` on lanes.
 #[inline(always)]
 fn apply_event<L: Lanes, V: Val<L>>(
     l: L,

@@ -1,7 +1,8 @@
 //! The field's definition at one point (see the terrain module doc): the numbers it runs
 //! on, the smooth minimum and maximum, and what one event does to a distance and a
-//! material. The grid, the proofs and the batch paths all apply events through
-//! [`apply_event`], which is what makes their results share bits.
+//! material. The grid and the proofs apply events through [`apply_event`]; the batch lanes
+//! (`super::batch`) transcribe it operation for operation, which is what makes every path's
+//! results share bits.
 
 use glam::Vec2;
 

@@ -1,7 +1,8 @@
 //! Keeping the explosion grid: listing a new event in the cells it reaches, the exact
 //! pruning of those lists (cell resets and covered events), baking over-long lists into
 //! bricks, and rebuilding everything after the tick moves back. The module doc of the
-//! terrain proves each step bitwise equal to the brute force.
+//! terrain proves the listing and the pruning bitwise equal to the brute force, and bounds
+//! a brick's error.
 
 use super::Terrain;
 use super::grid::{self, Brick, CellState, MaterialSource};

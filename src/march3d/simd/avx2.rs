@@ -11,7 +11,8 @@ use crate::backend::Backend;
 pub(super) struct Avx2(());
 
 impl Avx2 {
-    /// The token, if this CPU has AVX2 and FMA.
+    /// The token, if this CPU has AVX2 and FMA. `Backend::Avx2` is available only where
+    /// both are (see `crate::backend`), which the `fma` target feature of `call` needs.
     pub(super) fn new() -> Option<Avx2> {
         Backend::Avx2.is_available().then_some(Avx2(()))
     }
