@@ -461,6 +461,22 @@ fn diff_exits_2_on_unreadable_or_mismatched_images() {
         "{}",
         text(&nan.stderr)
     );
+    // A viewing distance under which FLIP has no score is refused, not passed.
+    let (red, green) = (dir.join("red.png"), dir.join("green.png"));
+    write_diff_image(&red, [220, 30, 30], 96);
+    write_diff_image(&green, [30, 200, 30], 96);
+    for ppd in ["1e-20", "0", "-5", "inf"] {
+        let out = craterfield()
+            .arg("diff")
+            .arg(&red)
+            .arg(&green)
+            .arg(format!("--ppd={ppd}"))
+            .output()
+            .unwrap();
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "--ppd {ppd}: {stderr}");
+        assert!(stderr.contains("pixels_per_degree"), "{stderr}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -243,12 +243,14 @@ fn check_options(o: &DiffOptions) -> Result<(), DiffError> {
             reason: "must be in (0, 100]",
         });
     }
+    // Below one pixel per degree FLIP's filters are wider than any image and its score is
+    // not a number.
     let ppd = o.pixels_per_degree;
-    if !(ppd.is_finite() && ppd > 0.0 && ppd <= 1.0e4) {
+    if !(ppd.is_finite() && (1.0..=1.0e4).contains(&ppd)) {
         return Err(DiffError::BadOption {
             name: "pixels_per_degree",
             value: ppd.to_string(),
-            reason: "must be positive, finite and at most 10000",
+            reason: "must be finite, from 1 to 10000",
         });
     }
     Ok(())
@@ -278,6 +280,14 @@ mod tests {
                 pixels_per_degree: f32::INFINITY,
                 ..DiffOptions::default()
             },
+            DiffOptions {
+                pixels_per_degree: 1e-20,
+                ..DiffOptions::default()
+            },
+            DiffOptions {
+                pixels_per_degree: 0.5,
+                ..DiffOptions::default()
+            },
         ] {
             assert!(
                 matches!(compare(&img, &img, &bad), Err(DiffError::BadOption { .. })),
@@ -292,5 +302,21 @@ mod tests {
             compare(&empty, &empty, &DiffOptions::default()),
             Err(DiffError::BadSize { .. })
         ));
+    }
+
+    #[test]
+    fn a_score_that_is_not_a_number_fails() {
+        let errors = vec![0u8; 16];
+        let stats = metrics::PixelStats::of(&errors, 2, 99.0);
+        let mut flip = vec![0.0f32; 16];
+        flip[3] = f32::NAN;
+        let report = DiffReport::new((4, 4), errors, stats, flip, &DiffOptions::default());
+        assert!(report.flip.is_nan());
+        assert!(!report.passed(), "a NaN FLIP score passed");
+        assert!(
+            report.failure_summary().contains("NaN"),
+            "{}",
+            report.failure_summary()
+        );
     }
 }

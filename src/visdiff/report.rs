@@ -160,7 +160,8 @@ impl DiffReport {
             (Metric::Flip, self.flip, o.max_flip),
         ]
         .into_iter()
-        .filter(|&(_, value, limit)| value > limit)
+        // A score that is not a number fails: it cannot be shown to be within its limit.
+        .filter(|&(_, value, limit)| value.is_nan() || value > limit)
         .map(|(metric, value, limit)| Failure {
             metric,
             value,
