@@ -109,6 +109,9 @@ enum ReplayCommand {
         /// The level it was recorded on (default: the embedded default level).
         #[arg(long)]
         level: Option<PathBuf>,
+        /// Exit 0 even when the replay stores no state hash (then nothing is verified).
+        #[arg(long)]
+        allow_unverified: bool,
     },
     /// Print what a replay holds: version, level, players, length, settings, size.
     Info {
@@ -209,7 +212,11 @@ fn main() -> ExitCode {
             match_ticks,
         } => demo::run(&out, events, width, level.as_deref(), match_ticks),
         Command::Replay { command } => match command {
-            ReplayCommand::Verify { file, level } => replay_cmd::verify(&file, level.as_deref()),
+            ReplayCommand::Verify {
+                file,
+                level,
+                allow_unverified,
+            } => replay_cmd::verify(&file, level.as_deref(), allow_unverified),
             ReplayCommand::Info { file, level } => replay_cmd::info(&file, level.as_deref()),
             ReplayCommand::Render {
                 file,

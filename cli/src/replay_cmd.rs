@@ -40,11 +40,30 @@ fn seconds(replay: &Replay) -> f64 {
     f64::from(replay.ticks()) / f64::from(replay.settings.tick_hz.max(1))
 }
 
-/// `replay verify`: re-simulates and compares every stored hash.
-pub(crate) fn verify(file: &Path, level: Option<&Path>) -> Result<ExitCode, String> {
+/// `replay verify`: re-simulates and compares every stored hash. A replay that stores none
+/// verifies nothing: that is an error unless `allow_unverified`.
+pub(crate) fn verify(
+    file: &Path,
+    level: Option<&Path>,
+    allow_unverified: bool,
+) -> Result<ExitCode, String> {
     let (replay, _, _) = load(file)?;
     let level = load_level(level)?;
     match verify_replay(&replay, &level) {
+        Ok(report) if report.hashes_checked == 0 => {
+            let what = format!(
+                "{}: {} ticks re-simulated, but the replay stores no state hash: nothing was verified (final hash {:#018x})",
+                file.display(),
+                report.ticks,
+                report.final_hash
+            );
+            if allow_unverified {
+                println!("{what}");
+                Ok(ExitCode::SUCCESS)
+            } else {
+                Err(format!("{what}; pass --allow-unverified to accept that"))
+            }
+        }
         Ok(report) => {
             println!(
                 "{}: ok: {} ticks ({:.1} s, {} players) re-simulated, all {} stored hashes match, final hash {:#018x}",

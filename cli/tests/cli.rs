@@ -237,6 +237,28 @@ fn demo_match_replay_verifies_and_info_describes_it() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A replay without stored hashes re-simulates but proves nothing: verify says so and fails,
+/// unless told to accept it.
+#[test]
+fn a_replay_without_hashes_is_not_reported_as_verified() {
+    let dir = temp_dir("unverified");
+    let mut recorded = craterfield::net::Replay::decode(&demo_match().replay).unwrap();
+    recorded.hashes.clear();
+    let file = dir.join("nohash.replay");
+    std::fs::write(&file, recorded.encode().unwrap()).unwrap();
+    let out = replay(&["verify"], &file);
+    assert_refused(&out, "nothing was verified");
+    assert!(!text(&out.stdout).contains("ok:"), "{}", text(&out.stdout));
+    let out = replay(&["verify", "--allow-unverified"], &file);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("nothing was verified"),
+        "{}",
+        text(&out.stdout)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn damaged_replays_are_refused_with_the_problem_named() {
     let original = &demo_match().replay;
