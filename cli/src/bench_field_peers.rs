@@ -15,35 +15,25 @@ use serde::Serialize;
 
 use crate::field_scene::{self, Blast};
 use crate::peers_field::{EdgeGrid, ParryPolyline, PolygonTerrain};
+use crate::tails::Tails;
 
 /// Explosions after which the queries are timed.
 const CHECKPOINTS: [usize; 3] = [0, 1_000, 10_000];
 const EVENT_SEED: u64 = 0x5eed_f1e1d;
 
-/// Per-insert times of one implementation, microseconds.
+/// Per-insert times of one implementation: microseconds, and the total in milliseconds.
 #[derive(Serialize)]
 pub(crate) struct Inserts {
-    median_us: f64,
-    p95_us: f64,
-    p99_us: f64,
-    max_us: f64,
+    #[serde(flatten)]
+    us: Tails,
     total_ms: f64,
 }
 
 impl Inserts {
-    fn of(mut us: Vec<f64>) -> Inserts {
-        us.sort_by(f64::total_cmp);
-        // Nearest rank: the smallest time with at least a share `q` of the times at or below it.
-        let at = |q: f64| {
-            let rank = (us.len() as f64 * q).ceil() as usize;
-            us.get(rank.saturating_sub(1)).copied().unwrap_or(0.0)
-        };
+    fn of(us: Vec<f64>) -> Inserts {
         Inserts {
-            median_us: at(0.5),
-            p95_us: at(0.95),
-            p99_us: at(0.99),
-            max_us: us.last().copied().unwrap_or(0.0),
             total_ms: us.iter().sum::<f64>() * 1e-3,
+            us: Tails::of(us),
         }
     }
 }
@@ -256,7 +246,7 @@ pub(crate) fn print(c: &Comparison) {
     for (name, i) in &c.inserts {
         println!(
             "{name:<28} {:>10.2} {:>10.2} {:>10.2} {:>10.1} {:>10.1}",
-            i.median_us, i.p95_us, i.p99_us, i.max_us, i.total_ms
+            i.us.median, i.us.p95, i.us.p99, i.us.max, i.total_ms
         );
     }
     println!(

@@ -17,6 +17,7 @@ use glam::Vec2;
 use serde::Serialize;
 
 use crate::barrage;
+use crate::tails::Tails;
 
 /// Options of `bench render2d`.
 #[derive(clap::Args, Debug, Clone)]
@@ -54,7 +55,7 @@ struct Row {
 }
 
 impl Row {
-    fn new(pipeline: &'static str, scale: u32, mode: &str, t: Times) -> Row {
+    fn new(pipeline: &'static str, scale: u32, mode: &str, t: Tails) -> Row {
         Row {
             pipeline,
             scale,
@@ -88,7 +89,7 @@ const MODES: [(Reconstruction, Upsample, &str); 5] = [
     (Reconstruction::Refine, Upsample::BSpline, "refine"),
 ];
 
-/// Times `frames` frames recorded by `record`: GPU timestamps when available, else wall
+/// Tails `frames` frames recorded by `record`: GPU timestamps when available, else wall
 /// time of submit + wait.
 type Timestamp<'a> = Option<(&'a wgpu::QuerySet, u32)>;
 
@@ -115,9 +116,9 @@ fn wait(ctx: &GpuContext) -> Result<(), GpuError> {
         .map_err(|e| GpuError::DeviceLost(e.to_string()))
 }
 
-/// Times `frames` frames recorded by `record` after two warm-up frames: GPU timestamps when
+/// Tails `frames` frames recorded by `record` after two warm-up frames: GPU timestamps when
 /// available, else wall time of submit + wait.
-fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<Times, GpuError> {
+fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<Tails, GpuError> {
     let [times] = time_interleaved(ctx, frames, [&mut record])?;
     Ok(times)
 }
@@ -129,7 +130,7 @@ fn time_interleaved<const N: usize>(
     ctx: &GpuContext,
     frames: u32,
     mut records: [&mut dyn Record; N],
-) -> Result<[Times; N], GpuError> {
+) -> Result<[Tails; N], GpuError> {
     for _ in 0..2 {
         for record in records.iter_mut() {
             ctx.queue.submit([encode_frame(ctx, *record, None)?]);
@@ -177,8 +178,8 @@ fn time_interleaved<const N: usize>(
 }
 
 /// The times of each of `N` configurations, from their frame times (one list each).
-fn per_configuration<const N: usize>(mut ms: Vec<Vec<f64>>) -> [Times; N] {
-    std::array::from_fn(|i| Times::of(ms.get_mut(i).map(std::mem::take).unwrap_or_default()))
+fn per_configuration<const N: usize>(mut ms: Vec<Vec<f64>>) -> [Tails; N] {
+    std::array::from_fn(|i| Tails::of(ms.get_mut(i).map(std::mem::take).unwrap_or_default()))
 }
 
 fn scene(explosions: usize) -> Result<(Level, Terrain<Graph>), String> {
@@ -244,7 +245,7 @@ fn sixteenth_pair(
     camera: &Camera,
     view: &wgpu::TextureView,
     frames: u32,
-) -> Result<(Times, Times, RefineStats), GpuError> {
+) -> Result<(Tails, Tails, RefineStats), GpuError> {
     let renderer = |reconstruction| -> Result<TerrainRenderer, GpuError> {
         let options = RenderOptions {
             scale: Scale::Sixteenth,
@@ -275,33 +276,8 @@ fn sixteenth_pair(
     Ok((planes_t, refine_t, refine.refine_stats()?))
 }
 
-/// Median, p95, p99 and max of frame times.
-#[derive(Serialize, Clone, Copy)]
-struct Times {
-    median: f64,
-    p95: f64,
-    p99: f64,
-    max: f64,
-}
-
-impl Times {
-    fn of(mut ms: Vec<f64>) -> Times {
-        ms.sort_by(f64::total_cmp);
-        let at = |q: f64| {
-            let i = ((ms.len() as f64 * q).ceil() as usize).clamp(1, ms.len().max(1)) - 1;
-            ms.get(i).copied().unwrap_or(f64::NAN)
-        };
-        Times {
-            median: ms.get(ms.len() / 2).copied().unwrap_or(f64::NAN),
-            p95: at(0.95),
-            p99: at(0.99),
-            max: ms.last().copied().unwrap_or(f64::NAN),
-        }
-    }
-}
-
-/// Times `frames` CPU frames of `render` after two warm-up frames.
-fn cpu_times(frames: u32, mut render: impl FnMut() -> Result<(), String>) -> Result<Times, String> {
+/// Tails `frames` CPU frames of `render` after two warm-up frames.
+fn cpu_times(frames: u32, mut render: impl FnMut() -> Result<(), String>) -> Result<Tails, String> {
     let [times] = cpu_times_interleaved(frames, [&mut render])?;
     Ok(times)
 }
@@ -313,7 +289,7 @@ type CpuRender<'a> = dyn FnMut() -> Result<(), String> + 'a;
 fn cpu_times_interleaved<const N: usize>(
     frames: u32,
     mut renders: [&mut CpuRender<'_>; N],
-) -> Result<[Times; N], String> {
+) -> Result<[Tails; N], String> {
     let mut ms = vec![Vec::new(); N];
     for i in 0..frames + 2 {
         for (render, ms) in renders.iter_mut().zip(&mut ms) {
@@ -333,7 +309,7 @@ struct CpuRow {
     pipeline: &'static str,
     scale: u32,
     mode: &'static str,
-    times: Times,
+    times: Tails,
 }
 
 /// The CPU rows: full-resolution direct evaluation, the twin at 1/16 in modes planes and

@@ -26,6 +26,7 @@ mod render_frame;
 mod replay_cmd;
 mod rng;
 mod script;
+mod tails;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -443,7 +443,6 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
         let mut pts = Vec::new();
         let (mut v, mut gx, mut gy) = ([0.0f32; 16], [0.0f32; 16], [0.0f32; 16]);
         let mut mat_lanes = [0i32; 16];
-        let mut tape_mats = [0 as MaterialId; 16];
         let mut events = Vec::new();
         let mut reaching = Vec::new();
         let step = NB * L::WIDTH;
@@ -462,40 +461,8 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                 for (r, p) in ps.iter_mut().enumerate() {
                     *p = lane_point(l, &pts, r);
                 }
-                let mut ds = [Dv::cst(l, band); NB];
-                let mut mats = [l.splat_i(0); NB];
-                match &start {
-                    Start::Base(plan) | Start::AirFromBase(plan) => {
-                        let tape = &plan.material;
-                        let b = block.get_or_insert_with(|| Block::new(l, tape));
-                        b.run(l, tape, &pts);
-                        let base = matches!(start, Start::Base(_));
-                        for r in 0..NB {
-                            b.materials(l, tape, r, &mut tape_mats);
-                            mats[r] = l.load_i(&tape_mats.map(i32::from));
-                            if base {
-                                ds[r] = match plan.clamped {
-                                    Some(c) => Dv::cst(l, c),
-                                    None => clamp(l, b.get(tape.value, r), -band, band),
-                                };
-                            }
-                        }
-                    }
-                    Start::Constant(v, m) => {
-                        ds = [Dv::cst(l, *v); NB];
-                        mats = [l.splat_i(i32::from(m.unwrap_or(0))); NB];
-                    }
-                    Start::AirFromBrick(id) | Start::Brick(id) => {
-                        let baked = matches!(start, Start::Brick(_));
-                        for r in 0..NB {
-                            let (d, m) = brick(l, t, *id, g.cell, ps[r], true);
-                            if baked {
-                                ds[r] = d;
-                            }
-                            mats[r] = m;
-                        }
-                    }
-                }
+                let (mut ds, mut mats) =
+                    start_with_materials(l, t, &start, g.cell, &mut block, &pts, &ps);
                 let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
                 for e in events {
                     for r in 0..NB {
@@ -522,6 +489,57 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
     }
 }
 
+/// The lanes' starting values and materials for the points `pts` (`ps` as lane registers)
+/// of one block of `cell`: the cell's state, before its events. Samples and bakes share it.
+#[inline(always)]
+fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
+    l: L,
+    t: &Terrain<F>,
+    start: &Start<'_>,
+    cell: Option<usize>,
+    block: &mut Option<Block<L, V, NB>>,
+    pts: &[Vec2],
+    ps: &[P2<V>; NB],
+) -> ([V; NB], [L::I; NB]) {
+    let band = t.options.band;
+    let mut ds = [V::cst(l, band); NB];
+    let mut mats = [l.splat_i(0); NB];
+    match start {
+        Start::Base(plan) | Start::AirFromBase(plan) => {
+            let tape = &plan.material;
+            let b = block.get_or_insert_with(|| Block::new(l, tape));
+            b.run(l, tape, pts);
+            let base = matches!(start, Start::Base(_));
+            let mut tape_mats = [0 as MaterialId; 16];
+            for r in 0..NB {
+                b.materials(l, tape, r, &mut tape_mats);
+                mats[r] = l.load_i(&tape_mats.map(i32::from));
+                if base {
+                    ds[r] = match plan.clamped {
+                        Some(c) => V::cst(l, c),
+                        None => clamp(l, b.get(tape.value, r), -band, band),
+                    };
+                }
+            }
+        }
+        Start::Constant(c, m) => {
+            ds = [V::cst(l, *c); NB];
+            mats = [l.splat_i(i32::from(m.unwrap_or(0))); NB];
+        }
+        Start::AirFromBrick(id) | Start::Brick(id) => {
+            let baked = matches!(start, Start::Brick(_));
+            for r in 0..NB {
+                let (d, m) = brick(l, t, *id, cell, ps[r], true);
+                if baked {
+                    ds[r] = d;
+                }
+                mats[r] = m;
+            }
+        }
+    }
+    (ds, mats)
+}
+
 /// A brick's lattice: see [`Terrain::bake_lattice`].
 struct Bake<'a, F: Sdf> {
     t: &'a Terrain<F>,
@@ -544,7 +562,6 @@ impl<F: Sdf> Kernel for Bake<'_, F> {
         let mut events = Vec::new();
         t.prepared_prefix(cell, self.upto, &mut events);
         let mut block: Option<Block<L, Fv<L>, NB>> = None;
-        let mut tape_mats = [0 as MaterialId; 16];
         let (mut v, mut mat_lanes) = ([0.0f32; 16], [0i32; 16]);
         let step = NB * L::WIDTH;
         for (chunk, pts) in self.points.chunks(step).enumerate() {
@@ -552,40 +569,7 @@ impl<F: Sdf> Kernel for Bake<'_, F> {
             for (r, p) in ps.iter_mut().enumerate() {
                 *p = lane_point(l, pts, r);
             }
-            let mut ds = [Fv::cst(l, band); NB];
-            let mut mats = [l.splat_i(0); NB];
-            match &start {
-                Start::Base(plan) | Start::AirFromBase(plan) => {
-                    let tape = &plan.material;
-                    let b = block.get_or_insert_with(|| Block::new(l, tape));
-                    b.run(l, tape, pts);
-                    let base = matches!(start, Start::Base(_));
-                    for r in 0..NB {
-                        b.materials(l, tape, r, &mut tape_mats);
-                        mats[r] = l.load_i(&tape_mats.map(i32::from));
-                        if base {
-                            ds[r] = match plan.clamped {
-                                Some(c) => Fv::cst(l, c),
-                                None => clamp(l, b.get(tape.value, r), -band, band),
-                            };
-                        }
-                    }
-                }
-                Start::Constant(c, m) => {
-                    ds = [Fv::cst(l, *c); NB];
-                    mats = [l.splat_i(i32::from(m.unwrap_or(0))); NB];
-                }
-                Start::AirFromBrick(id) | Start::Brick(id) => {
-                    let baked = matches!(start, Start::Brick(_));
-                    for r in 0..NB {
-                        let (d, m) = brick(l, t, *id, cell, ps[r], true);
-                        if baked {
-                            ds[r] = d;
-                        }
-                        mats[r] = m;
-                    }
-                }
-            }
+            let (mut ds, mut mats) = start_with_materials(l, t, &start, cell, &mut block, pts, &ps);
             for e in &events {
                 for r in 0..NB {
                     (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
