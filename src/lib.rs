@@ -13,6 +13,7 @@ pub mod det;
 #[cfg(feature = "emit")]
 pub mod emit;
 pub mod field2d;
+pub mod files;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 #[cfg(feature = "march3d")]

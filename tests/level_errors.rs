@@ -236,3 +236,81 @@ fn levels_whose_explosion_grid_would_be_too_big_are_refused() {
     let msg = error_of(&huge);
     assert!(msg.starts_with("cell_size:"), "{msg}");
 }
+
+/// A misspelt field anywhere in a level (top level, bounds, a material, a node of any
+/// kind) is an error that names the field and its line, never a silent default.
+#[test]
+fn unknown_fields_are_errors_that_name_the_line() {
+    let cases = [
+        (
+            level_with("Circle(radius: 3.0)", "cell_sise: 4.0,"),
+            "cell_sise",
+            6,
+        ),
+        (
+            level_with(
+                "Union([Circle(radius: 3.0), Circle(radius: 2.0, centre: (1.0, 1.0))])",
+                "",
+            ),
+            "centre",
+            5,
+        ),
+        (
+            level_with(
+                "Translate(offset: (1.0, 0.0), node: Box(half_size: (1.0, 1.0), angel: 0.5))",
+                "",
+            ),
+            "angel",
+            5,
+        ),
+        (
+            r#"Level(
+    name: "t",
+    bounds: (min: (0.0, 0.0), max: (1024.0, 512.0), maxx: (1.0, 1.0)),
+    materials: [(name: "soil", color: (1, 2, 3))],
+    root: Circle(radius: 3.0),
+)"#
+            .to_string(),
+            "maxx",
+            3,
+        ),
+        (
+            r#"Level(
+    name: "t",
+    bounds: (min: (0.0, 0.0), max: (1024.0, 512.0)),
+    materials: [(name: "soil", colour: (1, 2, 3))],
+    root: Circle(radius: 3.0),
+)"#
+            .to_string(),
+            "colour",
+            4,
+        ),
+        (
+            level_with(
+                "Ref(\"a\")",
+                "nodes: { \"a\": Circle(radius: 3.0, radios: 1.0) },",
+            ),
+            "radios",
+            6,
+        ),
+    ];
+    for (text, field, line) in cases {
+        let msg = error_of(&text);
+        assert_mentions(&msg, &[field, &format!("{line}:")]);
+    }
+}
+
+/// A node name defined twice would keep only one definition: refused, naming the name
+/// and the line.
+#[test]
+fn duplicate_node_names_are_errors() {
+    let text = level_with(
+        "Ref(\"hill\")",
+        "nodes: {\n        \"hill\": Circle(radius: 3.0),\n        \"hill\": Circle(radius: 9.0),\n    },",
+    );
+    let msg = error_of(&text);
+    assert_mentions(&msg, &["\"hill\"", "defined twice", "8:"]);
+    // A field given twice in one node is refused the same way.
+    let msg = error_of(&level_with("Circle(radius: 3.0, radius: 4.0)", ""));
+    assert_mentions(&msg, &["duplicate field", "radius", "5:"]);
+}

@@ -122,7 +122,7 @@ pub(crate) fn eval(o: Options) -> Result<ExitCode, String> {
     }
 
     let path = prospero.unwrap_or_else(|| PathBuf::from("tests/data/prospero.vm"));
-    match std::fs::read_to_string(&path) {
+    match craterfield::files::read_text(&path, crate::fidelity_scenes::MAX_VM_BYTES) {
         _ if !wanted("prospero") => {}
         Ok(text) => {
             let parts = (wanted("prospero-brute"), wanted("prospero-specialized"));

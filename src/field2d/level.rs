@@ -38,6 +38,7 @@ pub const DEFAULT_LEVEL_RON: &str =
 
 /// World rectangle of a level.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct WorldBounds {
     /// Lower-left corner.
     pub min: P2,
@@ -47,6 +48,7 @@ pub struct WorldBounds {
 
 /// A palette entry.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct MaterialDef {
     /// Display name.
     pub name: String,
@@ -60,6 +62,7 @@ fn default_cell_size() -> f32 {
 
 /// A level file as written (see `levels/*.ron`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 #[serde(rename = "Level")]
 pub struct LevelFile {
     /// Display name.
@@ -76,9 +79,43 @@ pub struct LevelFile {
     pub spawns: Vec<P2>,
     /// The terrain graph.
     pub root: Node,
-    /// Named nodes that `Ref("name")` refers to.
-    #[serde(default)]
+    /// Named nodes that `Ref("name")` refers to. A name given twice is an error (a map
+    /// would keep the last definition and silently drop the first).
+    #[serde(default, deserialize_with = "unique_names")]
     pub nodes: BTreeMap<String, Node>,
+}
+
+/// Reads the `nodes` map, refusing a name defined twice (the parser's error then carries
+/// the line and column).
+fn unique_names<'de, D>(deserializer: D) -> Result<BTreeMap<String, Node>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    struct Names;
+    impl<'de> serde::de::Visitor<'de> for Names {
+        type Value = BTreeMap<String, Node>;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("a map of node names to nodes")
+        }
+
+        fn visit_map<A: serde::de::MapAccess<'de>>(
+            self,
+            mut map: A,
+        ) -> Result<Self::Value, A::Error> {
+            let mut nodes = BTreeMap::new();
+            while let Some((name, node)) = map.next_entry::<String, Node>()? {
+                if nodes.contains_key(&name) {
+                    return Err(serde::de::Error::custom(format!(
+                        "node \"{name}\" is defined twice in `nodes`"
+                    )));
+                }
+                nodes.insert(name, node);
+            }
+            Ok(nodes)
+        }
+    }
+    deserializer.deserialize_map(Names)
 }
 
 /// A validated level with its compiled graph.
@@ -105,18 +142,11 @@ impl Level {
 
     /// Read, parse and validate a level file.
     pub fn load(path: &Path) -> Result<Level, LevelError> {
-        let io = |e: std::io::Error| LevelError::Io {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        };
-        let size = std::fs::metadata(path).map_err(io)?.len();
-        if size > MAX_LEVEL_BYTES as u64 {
-            return Err(LevelError::TooLarge {
-                size: size as usize,
-                limit: MAX_LEVEL_BYTES,
-            });
-        }
-        let text = std::fs::read_to_string(path).map_err(io)?;
+        let text =
+            crate::files::read_text(path, MAX_LEVEL_BYTES as u64).map_err(|e| LevelError::Io {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            })?;
         Level::from_ron(&text)
     }
 

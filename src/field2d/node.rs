@@ -26,6 +26,7 @@ fn origin() -> P2 {
 
 /// One node of a level graph.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 #[non_exhaustive]
 pub enum Node {
     // ---- primitives -------------------------------------------------------------------

@@ -134,6 +134,7 @@ impl CameraSpec {
 
 /// The lighting model.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Lighting {
     /// The reference paper's point lights, Phong, reflections and soft shadows.
     Paper(PaperLighting),
@@ -345,6 +346,7 @@ pub struct MaterialSpec {
 /// An object of the scene. Objects placed by `(x, z)` stand on the terrain (or on y = 0
 /// without one).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Object {
     /// One primitive.
     Shape {
@@ -454,17 +456,12 @@ impl Scene {
 
     /// Reads, parses and validates a file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let io = |e: std::io::Error| SceneError::Io {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        };
-        let len = std::fs::metadata(path).map_err(io)?.len();
-        if len > MAX_SCENE_BYTES as u64 {
-            return Err(SceneError::TooLarge {
-                bytes: len as usize,
-            });
-        }
-        Scene::from_ron(&std::fs::read_to_string(path).map_err(io)?)
+        let text =
+            crate::files::read_text(path, MAX_SCENE_BYTES as u64).map_err(|e| SceneError::Io {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            })?;
+        Scene::from_ron(&text)
     }
 
     /// A builtin scene by name ([`BUILTIN`]).
@@ -784,6 +781,42 @@ mod tests {
             Scene::builtin("nope"),
             Err(SceneError::UnknownBuiltin(_))
         ));
+    }
+
+    /// A misspelt field in any part of a scene (camera, light, object, shape) is an error
+    /// naming it and its line, never a silent default.
+    #[test]
+    fn unknown_fields_are_errors_that_name_the_line() {
+        let scene0 = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/scene0.ron"));
+        for (from, to, field, line) in [
+            ("fov: 30.0", "fov: 30.0, roll: 1.0", "roll", 5),
+            (
+                "emission: 200.0",
+                "emission: 200.0, colour: 1.0",
+                "colour",
+                8,
+            ),
+            (
+                "material: \"red\")",
+                "material: \"red\", scale: 2.0)",
+                "scale",
+                28,
+            ),
+            (
+                "Sphere(r: 3.0)",
+                "Sphere(r: 3.0, radius: 1.0)",
+                "radius",
+                28,
+            ),
+        ] {
+            let text = scene0.replacen(from, to, 1);
+            assert_ne!(text, scene0, "{from}");
+            let err = Scene::from_ron(&text).unwrap_err().to_string();
+            assert!(
+                err.contains(field) && err.contains(&format!("{line}:")),
+                "{field}: {err}"
+            );
+        }
     }
 
     #[test]

@@ -160,26 +160,30 @@ pub fn compare(
     ))
 }
 
-/// Reads a PNG (or any format the `image` crate decodes here) as RGBA, refusing images over
-/// [`MAX_PIXELS`] before decoding them.
+/// Largest image file [`load_png`] reads, bytes (an uncompressed RGBA image of
+/// [`MAX_PIXELS`] pixels, and then some).
+pub const MAX_IMAGE_FILE_BYTES: u64 = 4 * MAX_PIXELS + (1 << 20);
+
+/// Reads a PNG (or any format the `image` crate decodes here) as RGBA from a regular file
+/// of at most [`MAX_IMAGE_FILE_BYTES`], refusing images over [`MAX_PIXELS`] before decoding
+/// them.
 pub fn load_png(path: &Path) -> Result<RgbaImage, DiffError> {
     let read_error = |reason: String| DiffError::Read {
         path: path.to_path_buf(),
         reason,
     };
-    let reader = image::ImageReader::open(path)
-        .map_err(|e| read_error(e.to_string()))?
-        .with_guessed_format()
-        .map_err(|e| read_error(e.to_string()))?;
-    let (width, height) = reader
+    let bytes =
+        crate::files::read(path, MAX_IMAGE_FILE_BYTES).map_err(|e| read_error(e.to_string()))?;
+    let reader = || {
+        image::ImageReader::new(std::io::Cursor::new(&bytes))
+            .with_guessed_format()
+            .map_err(|e| read_error(e.to_string()))
+    };
+    let (width, height) = reader()?
         .into_dimensions()
         .map_err(|e| read_error(e.to_string()))?;
     check_size(width, height).map_err(|e| read_error(e.to_string()))?;
-    let decoded = image::ImageReader::open(path)
-        .and_then(|r| r.with_guessed_format())
-        .map_err(|e| read_error(e.to_string()))?
-        .decode()
-        .map_err(|e| read_error(e.to_string()))?;
+    let decoded = reader()?.decode().map_err(|e| read_error(e.to_string()))?;
     Ok(decoded.to_rgba8())
 }
 

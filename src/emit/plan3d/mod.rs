@@ -120,6 +120,7 @@ pub const VALUE_NOISE3_SLOPE: f32 = 2.598_076;
 
 /// A world ready to render for one camera.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Plan {
     /// The cache key of the emitted program: visible set, LOD levels, step count and the
     /// options that change the code (see `march3d::compile`).
@@ -144,6 +145,7 @@ pub struct Plan {
 
 /// How rays step.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct March {
     /// At most this many steps per ray.
     pub max_steps: u32,
@@ -167,6 +169,7 @@ pub struct March {
 
 /// The heightfield terrain `y = h(x, z)`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TerrainPlan {
     /// The height function.
     pub fbm: Fbm,
@@ -184,6 +187,7 @@ pub struct TerrainPlan {
 /// `[0, 1)` of smoothstep-interpolated lattice hashes and `R` the rotation by
 /// `rotation` radians (to break the lattice's alignment from octave to octave).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Fbm {
     /// Height at noise 0.
     pub base: f32,
@@ -203,6 +207,7 @@ pub struct Fbm {
 
 /// The lattice hash of the noise.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Hash {
     /// `fract((p3.x + p3.y) * p3.z)` after `p3 = fract(p * 0.1031); p3 += dot(p3, p3.yzx +
     /// 33.33)`: multiplies and adds only.
@@ -213,6 +218,7 @@ pub enum Hash {
 
 /// One object of the emitted world.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Node {
     /// Material index.
     pub material: u32,
@@ -231,6 +237,7 @@ pub struct Node {
 
 /// Vertical placement of a node.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Lift {
     /// Coordinates are world coordinates.
     None,
@@ -247,6 +254,7 @@ pub enum Lift {
 
 /// An axis-aligned box around a node's geometry (node-local coordinates, after the lift).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Guard {
     /// Box centre.
     pub centre: Vec3,
@@ -258,6 +266,7 @@ pub struct Guard {
 
 /// A sphere.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Sphere {
     /// Centre.
     pub centre: Vec3,
@@ -267,6 +276,7 @@ pub struct Sphere {
 
 /// The geometry of a node (node-local coordinates).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Shape {
     /// One primitive.
     Prim(Prim),
@@ -310,6 +320,7 @@ pub enum Shape {
 
 /// A primitive placed in node-local space: `p_local = rotation * (p - centre)`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Prim {
     /// Where the primitive's origin is.
     pub centre: Vec3,
@@ -321,6 +332,7 @@ pub struct Prim {
 
 /// Primitives in their own frame (formulas of Quilez's distance functions).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum PrimKind {
     /// `|p| - r`.
     Sphere {
@@ -392,6 +404,7 @@ pub enum PrimKind {
 
 /// A surface's look.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Material {
     /// Linear RGB albedo.
     pub colour: Vec3,
@@ -401,6 +414,7 @@ pub struct Material {
 
 /// How a hit becomes a colour.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Shading {
     /// The reference paper's model (see [`PaperShading`]).
     Paper(PaperShading),
@@ -415,6 +429,7 @@ pub enum Shading {
 /// colour traced along the mirror direction, up to `bounces` bounces); then each channel
 /// clamped to [0, 1] and raised to `gamma`. Misses are black.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PaperShading {
     /// Point lights.
     pub lights: Vec<PointLight>,
@@ -438,6 +453,7 @@ pub struct PaperShading {
 
 /// A point light.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PointLight {
     /// Position.
     pub position: Vec3,
@@ -461,6 +477,7 @@ pub struct PointLight {
 /// > c`. [`ShadowMode::Full`]: `sh` is the soft shadow (module doc) from `p` along `sun`
 /// with limit `far`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct WorldShading {
     /// Unit direction towards the sun.
     pub sun: Vec3,
@@ -480,6 +497,7 @@ pub struct WorldShading {
 
 /// Ambient occlusion taps along the normal.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum AoMode {
     /// Always this many taps.
     Fixed(u32),
@@ -497,6 +515,7 @@ pub enum AoMode {
 
 /// Sun shadows.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum ShadowMode {
     /// Soft shadow march of the full scene, at most `steps` steps, softness `k`.
     Full {
@@ -531,6 +550,7 @@ impl Prim {
 /// tan_half_fov` and `y = (1 - 2 (j + 0.5) / H) * tan_half_fov` (the reference paper's
 /// rays).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Camera3d {
     /// Eye position.
     pub position: Vec3,
