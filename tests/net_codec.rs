@@ -500,6 +500,93 @@ fn encoding_rejects_inconsistent_replays() {
     assert!(bad.encode().is_err());
 }
 
+/// Each way a hand-built replay can break its invariants: verify refuses it with the
+/// invariant named, before simulating anything (encode refuses the same replays).
+#[test]
+fn verify_refuses_the_replays_encode_refuses() {
+    let level = Level::default_level();
+    let mut good = scripted_replay(2, 10, 1);
+    good.level_hash = level_hash(&level);
+    let mut breaks: Vec<(Replay, &str)> = Vec::new();
+    let mut ragged = good.clone();
+    ragged.inputs.pop();
+    breaks.push((ragged, "not whole rows"));
+    let mut reserved = good.clone();
+    reserved.inputs[3].buttons = 0x40;
+    breaks.push((reserved, "tick 1 player 1"));
+    let mut late_hash = good.clone();
+    late_hash.hashes.push((11, 0));
+    breaks.push((late_hash, "hash ticks"));
+    let mut unordered = good.clone();
+    unordered.hashes = vec![(5, 0), (3, 0)];
+    breaks.push((unordered, "hash ticks"));
+    let mut no_players = good.clone();
+    no_players.players = 0;
+    breaks.push((no_players, "0 players"));
+    let mut interval = good.clone();
+    interval.hash_interval = 0;
+    breaks.push((interval, "hash interval"));
+    let mut settings = good.clone();
+    settings.settings.tick_hz = 0;
+    breaks.push((settings, "tick_hz"));
+    for (replay, needle) in breaks {
+        assert!(replay.encode().is_err(), "{needle}");
+        match replay::verify(&replay, &level) {
+            Err(VerifyError::Inconsistent { detail }) => {
+                assert!(detail.contains(needle), "{needle}: {detail}")
+            }
+            other => panic!("{needle}: {other:?}"),
+        }
+    }
+}
+
+/// What `encode` writes, `decode` reads: a replay longer (or larger) than the decoder's
+/// limits is refused when it is written, and a recorder stops at the tick limit.
+#[test]
+fn encode_refuses_what_decode_would_refuse() {
+    let limits = DecodeLimits {
+        max_ticks: 50,
+        ..DecodeLimits::default()
+    };
+    let replay = scripted_replay(2, 51, 3);
+    let e = replay.encode_with_limits(&limits).unwrap_err().to_string();
+    assert!(e.contains("ticks = 51") && e.contains("50"), "{e}");
+    let fits = scripted_replay(2, 50, 3);
+    let bytes = fits.encode_with_limits(&limits).unwrap();
+    assert_eq!(Replay::decode_with_limits(&bytes, &limits).unwrap(), fits);
+    let few_players = DecodeLimits {
+        max_players: 1,
+        ..DecodeLimits::default()
+    };
+    assert!(fits.encode_with_limits(&few_players).is_err());
+    let small = DecodeLimits {
+        max_bytes: 16,
+        ..DecodeLimits::default()
+    };
+    let e = fits.encode_with_limits(&small).unwrap_err().to_string();
+    assert!(e.contains("file length"), "{e}");
+
+    // The default limit, through the recorder: the tick past it is refused, the replay
+    // up to it encodes and decodes.
+    let max = DecodeLimits::default().max_ticks;
+    let mut rec = Recorder::new(0, Settings::default(), 1, max).unwrap();
+    let row = [Input::default()];
+    for t in 1..=max {
+        rec.record(&row, t, 0).unwrap();
+    }
+    let e = rec.record(&row, max + 1, 0).unwrap_err().to_string();
+    assert!(e.contains("ticks"), "{e}");
+    let full = rec.finish(max, 0);
+    let bytes = full.encode().unwrap();
+    assert_eq!(Replay::decode(&bytes).unwrap().ticks(), max);
+    let mut over = full;
+    over.inputs.push(Input::default());
+    assert!(matches!(
+        over.encode(),
+        Err(craterfield::net::EncodeError::TooLarge { what: "ticks", .. })
+    ));
+}
+
 #[test]
 fn replay_compactness_of_a_four_player_match() {
     let minutes = 5;
@@ -553,11 +640,12 @@ fn verify_resimulates_and_catches_divergence_and_wrong_levels() {
         other => panic!("expected a divergence at tick 120, got {other:?}"),
     }
 
+    // A hash past the last tick could never be compared: the replay is refused whole.
     let mut unreachable = decoded.clone();
     unreachable.hashes.push((1_000, 0));
     assert!(matches!(
         replay::verify(&unreachable, &level),
-        Err(VerifyError::HashNotReached { tick: 1_000 })
+        Err(VerifyError::Inconsistent { .. })
     ));
 
     let other = Level::from_ron(include_str!("../levels/caverns.ron")).unwrap();
@@ -919,5 +1007,41 @@ proptest! {
         let replay = rec.finish(ticks, 0);
         let back = Replay::decode(&replay.encode().unwrap()).unwrap();
         prop_assert_eq!(back, replay);
+    }
+}
+
+/// Every setting is part of what peers and replays compare: a replay whose settings were
+/// edited (and re-encoded, so its checksum is right) diverges at its first stored hash,
+/// even where the edit changes nothing that the short match exercises.
+#[test]
+fn a_replay_with_any_setting_changed_does_not_verify() {
+    let level = Level::default_level();
+    let (replay, _) = played_match(&level, 60);
+    replay::verify(&replay, &level).unwrap();
+    type Edit = fn(&mut Settings);
+    let edits: Vec<(&str, Edit)> = vec![
+        ("tick_hz", |s| s.tick_hz += 1),
+        ("gravity", |s| s.gravity += 1),
+        ("wind.y", |s| s.wind[1] += 1),
+        ("stick_range", |s| s.stick_range += 1),
+        ("max_speed", |s| s.max_speed += 1),
+        ("vehicle.health", |s| s.vehicle.health += 1),
+        ("vehicle.jump_speed", |s| s.vehicle.jump_speed += 1),
+        ("shell.material", |s| s.shell.material += 1),
+        ("shell.cooldown_ticks", |s| s.shell.cooldown_ticks += 1),
+        ("dirt.blast_radius", |s| s.dirt.blast_radius += 1),
+        ("dirt.fills", |s| s.dirt.fills = !s.dirt.fills),
+        ("max_bodies", |s| s.max_bodies -= 1),
+        ("rollback_ticks", |s| s.rollback_ticks += 1),
+    ];
+    for (name, edit) in edits {
+        let mut edited = replay.clone();
+        edit(&mut edited.settings);
+        let bytes = edited.encode().unwrap();
+        let decoded = Replay::decode(&bytes).unwrap();
+        match replay::verify(&decoded, &level) {
+            Err(VerifyError::Diverged { tick: 30, .. }) => {}
+            other => panic!("{name}: expected a divergence at the first hash, got {other:?}"),
+        }
     }
 }

@@ -162,12 +162,33 @@ impl Replay {
         Ok(())
     }
 
-    /// Encodes the replay (see the [module documentation](self) for the layout).
+    /// Encodes the replay (see the [module documentation](self) for the layout), refusing
+    /// what [`Replay::decode`] would refuse: what one side writes the other reads.
     ///
     /// Fails with [`EncodeError::Inconsistent`] where the public fields break the
-    /// invariants documented on them, or the settings or an input are invalid.
+    /// invariants documented on them, or the settings or an input are invalid, and with
+    /// [`EncodeError::TooLarge`] past the default [`DecodeLimits`].
     pub fn encode(&self) -> Result<Vec<u8>, EncodeError> {
-        self.check_consistent()?;
+        self.encode_with_limits(&DecodeLimits::default())
+    }
+
+    /// Encodes the replay, refusing anything [`Replay::decode_with_limits`] would refuse
+    /// with the same `limits`.
+    pub fn encode_with_limits(&self, limits: &DecodeLimits) -> Result<Vec<u8>, EncodeError> {
+        self.validate().map_err(inconsistent)?;
+        let too_large = |what, value: u64, limit: u64| EncodeError::TooLarge { what, value, limit };
+        if self.ticks() > limits.max_ticks {
+            let (ticks, max) = (self.ticks(), limits.max_ticks);
+            return Err(too_large("ticks", ticks.into(), max.into()));
+        }
+        let max_players = limits.max_players.min(FORMAT_MAX_PLAYERS);
+        if self.players > max_players {
+            return Err(too_large(
+                "players",
+                self.players.into(),
+                max_players.into(),
+            ));
+        }
         let header = Header {
             level_hash: self.level_hash,
             settings: self.settings,
@@ -184,6 +205,10 @@ impl Replay {
         w.section(&self.encode_inputs());
         w.section(&self.encode_hashes());
         w.checksum();
+        if w.buf.len() > limits.max_bytes {
+            let (len, max) = (w.buf.len() as u64, limits.max_bytes as u64);
+            return Err(too_large("file length", len, max));
+        }
         Ok(w.buf)
     }
 
@@ -216,43 +241,41 @@ impl Replay {
         })
     }
 
-    fn check_consistent(&self) -> Result<(), EncodeError> {
+    /// Checks the invariants documented on the public fields (players in range, whole
+    /// rows of valid inputs, valid settings, stored hash ticks increasing up to the last
+    /// tick). [`Replay::encode`] and [`verify`] refuse a replay that breaks them; the error
+    /// says which.
+    pub fn validate(&self) -> Result<(), String> {
         if self.players == 0 || self.players > FORMAT_MAX_PLAYERS {
-            return Err(inconsistent(format!(
-                "{} players (1 to 8 allowed)",
+            return Err(format!(
+                "{} players (1 to {FORMAT_MAX_PLAYERS} allowed)",
                 self.players
-            )));
+            ));
         }
         let p = usize::from(self.players);
         let ticks = self.inputs.len() / p;
         if ticks * p != self.inputs.len() || ticks > u32::MAX as usize {
             let n = self.inputs.len();
-            return Err(inconsistent(format!("{n} inputs for {p} players")));
+            return Err(format!("{n} inputs for {p} players: not whole rows"));
         }
         if self.hash_interval == 0 {
-            return Err(inconsistent("hash interval 0"));
+            return Err("hash interval 0".to_string());
         }
         self.settings
             .validate()
-            .map_err(|e| inconsistent(format!("settings: {e}")))?;
+            .map_err(|e| format!("settings: {e}"))?;
         if let Some((i, e)) = self
             .inputs
             .iter()
             .enumerate()
             .find_map(|(i, x)| x.validate().err().map(|e| (i, e)))
         {
-            return Err(inconsistent(format!(
-                "tick {} player {}: {e}",
-                i / p,
-                i % p
-            )));
+            return Err(format!("tick {} player {}: {e}", i / p, i % p));
         }
         let ticks = self.ticks();
         let increasing = self.hashes.windows(2).all(|w| w[0].0 < w[1].0);
         if !increasing || self.hashes.last().is_some_and(|h| h.0 > ticks) {
-            return Err(inconsistent(format!(
-                "hash ticks must increase strictly up to {ticks}"
-            )));
+            return Err(format!("hash ticks must increase strictly up to {ticks}"));
         }
         Ok(())
     }
@@ -552,13 +575,23 @@ impl Recorder {
     /// Records one tick: the inputs the world was stepped with, and its tick and state hash
     /// after the step. Invalid inputs are stored as [`Input::sanitized`] does (the
     /// simulation treats them the same way), so the replay always encodes. Errors (and
-    /// records nothing) unless there is one input per player.
+    /// records nothing) unless there is one input per player, and with
+    /// [`EncodeError::TooLarge`] once the replay holds the default [`DecodeLimits`]'
+    /// `max_ticks`: a longer one could not be read back.
     pub fn record(
         &mut self,
         inputs: &[Input],
         tick_after: u32,
         state_hash_after: u64,
     ) -> Result<(), EncodeError> {
+        let max_ticks = DecodeLimits::default().max_ticks;
+        if self.replay.ticks() >= max_ticks {
+            return Err(EncodeError::TooLarge {
+                what: "ticks",
+                value: u64::from(max_ticks) + 1,
+                limit: max_ticks.into(),
+            });
+        }
         if inputs.len() != usize::from(self.replay.players) {
             return Err(EncodeError::Inconsistent {
                 detail: format!(
@@ -621,6 +654,12 @@ pub enum VerifyError {
         /// The hash of the level given.
         found: u64,
     },
+    /// The replay breaks an invariant of [`Replay`] (see [`Replay::validate`]).
+    #[error("the replay is inconsistent: {detail}")]
+    Inconsistent {
+        /// Which invariant, and where.
+        detail: String,
+    },
     /// The simulation rejected the replay's settings, players or inputs.
     #[error("simulation error: {0}")]
     Sim(#[from] SimError),
@@ -651,6 +690,9 @@ pub enum VerifyError {
 /// once per input row and compares the stored hash of every tick the world reaches
 /// (including its starting tick). Stops at the first mismatch.
 pub fn verify(replay: &Replay, level: &Level) -> Result<VerifyReport, VerifyError> {
+    replay
+        .validate()
+        .map_err(|detail| VerifyError::Inconsistent { detail })?;
     replay.check_level(crate::sim::level_hash(level))?;
     let mut world = World::new(level, replay.settings, usize::from(replay.players))?;
     let mut pending = replay.hashes.iter().peekable();

@@ -74,9 +74,10 @@ pub enum SessionError {
         /// The frame GGRS named.
         frame: Frame,
     },
-    /// The world is not at the tick GGRS expects (a request was skipped, reordered or
-    /// fulfilled on another world, or the session did not start on a fresh world).
-    #[error("GGRS request for frame {frame}, but the world is at tick {tick}")]
+    /// The world (for a save) or the saved snapshot (for a load) is not at the tick GGRS
+    /// names: a request was skipped, reordered or fulfilled on another world, or the
+    /// session did not start on a fresh world.
+    #[error("GGRS request for frame {frame}, but the state is at tick {tick}")]
     FrameMismatch {
         /// The frame GGRS named.
         frame: Frame,
@@ -120,7 +121,8 @@ fn check_frame(world: &World, frame: Frame) -> Result<(), SessionError> {
 /// * `AdvanceFrame`: steps the world once with the given inputs; a disconnected player's
 ///   input is [`Input::default`] whatever GGRS passed.
 ///
-/// Saves and loads check that the world is at the tick GGRS names.
+/// Saves check that the world is at the tick GGRS names, loads that the snapshot is. A
+/// request that fails changes nothing.
 pub fn handle_request(world: &mut World, request: Request) -> Result<(), SessionError> {
     match request {
         GgrsRequest::SaveGameState { cell, frame } => {
@@ -128,11 +130,15 @@ pub fn handle_request(world: &mut World, request: Request) -> Result<(), Session
             cell.save(frame, Some(world.snapshot()), Some(checksum(world)));
         }
         GgrsRequest::LoadGameState { cell, frame } => {
-            {
-                let snapshot = cell.data().ok_or(SessionError::EmptyState { frame })?;
-                world.restore(&snapshot)?;
+            let snapshot = cell.data().ok_or(SessionError::EmptyState { frame })?;
+            // Checked before restoring: a refused load leaves the world as it was.
+            if i64::from(snapshot.tick()) != i64::from(frame) {
+                return Err(SessionError::FrameMismatch {
+                    frame,
+                    tick: snapshot.tick(),
+                });
             }
-            check_frame(world, frame)?;
+            world.restore(&snapshot)?;
         }
         GgrsRequest::AdvanceFrame { inputs } => {
             if inputs.len() > MAX_PLAYERS {
@@ -271,6 +277,25 @@ mod tests {
         let err =
             handle_request(&mut w, GgrsRequest::LoadGameState { cell, frame: 0 }).unwrap_err();
         assert!(matches!(err, SessionError::EmptyState { frame: 0 }));
+        // A load whose snapshot is not of the frame GGRS names changes nothing.
+        let cell = GameStateCell::<Snapshot>::default();
+        handle_request(
+            &mut w,
+            GgrsRequest::SaveGameState {
+                cell: cell.clone(),
+                frame: 0,
+            },
+        )
+        .unwrap();
+        w.step(&[Input::default(); 2]).unwrap();
+        let before = (w.tick(), w.state_hash());
+        let err =
+            handle_request(&mut w, GgrsRequest::LoadGameState { cell, frame: 1 }).unwrap_err();
+        assert!(matches!(
+            err,
+            SessionError::FrameMismatch { frame: 1, tick: 0 }
+        ));
+        assert_eq!((w.tick(), w.state_hash()), before);
         let err = handle_request(
             &mut w,
             advance(&[(Input::default(), InputStatus::Confirmed); MAX_PLAYERS + 1]),

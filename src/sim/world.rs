@@ -80,6 +80,14 @@ pub enum SimError {
         /// Why.
         source: RollbackError,
     },
+    /// The snapshot was taken on a world of another level, settings or player count.
+    #[error(
+        "cannot restore the snapshot of tick {tick}: it was taken on a world of another level, settings or player count"
+    )]
+    ForeignSnapshot {
+        /// The snapshot's tick.
+        tick: u32,
+    },
     /// A body could not be added.
     #[error("cannot add a body: {reason}")]
     BadBody {
@@ -93,6 +101,7 @@ pub enum SimError {
 #[derive(Clone, Debug)]
 pub struct Snapshot {
     tick: u32,
+    setup: u64,
     bodies: Vec<Body>,
     next_id: u32,
     events_hash: u64,
@@ -110,6 +119,8 @@ impl Snapshot {
 #[derive(Clone, Debug)]
 pub struct World {
     settings: Settings,
+    /// Hash of the level, the settings and the player count (see [`setup_hash`]).
+    setup: u64,
     terrain: Terrain<Graph>,
     players: usize,
     tick: u32,
@@ -150,6 +161,18 @@ pub fn level_hash(level: &Level) -> u64 {
     super::hash::hash_bytes(0x6c65_7665_6c00, text.as_bytes())
 }
 
+/// Hash of what a match is played with: the level, every setting and the player count.
+/// Part of every state hash, so peers (and replays) that differ in any of them disagree
+/// from tick 0, and the identity a snapshot must share with the world it is restored into.
+fn setup_hash(level: &Level, settings: &Settings, players: usize) -> u64 {
+    let mut h = StateHasher::new(0x7365_7475_7000);
+    h.word(level_hash(level));
+    // Postcard writes the fields in declaration order as varints: canonical bytes.
+    h.bytes(&postcard::to_stdvec(settings).unwrap_or_default());
+    h.word(players as u64);
+    h.finish()
+}
+
 fn event_words(e: &Event) -> [u64; 4] {
     let kind = match e.kind {
         EventKind::Carve => 0u64,
@@ -179,6 +202,7 @@ impl World {
         terrain.enable_rollback();
         let mut world = World {
             settings,
+            setup: setup_hash(level, &settings, players),
             terrain,
             players,
             tick: 0,
@@ -321,10 +345,12 @@ impl World {
         self.threads = threads.clamp(1, 64);
     }
 
-    /// The state hash: tick, bodies and the terrain's event log, over canonical words.
-    /// O(bodies): the event log is folded into a chain hash as events are applied.
+    /// The state hash: the match's setup (level, settings, players), the tick, the bodies
+    /// and the terrain's event log, over canonical words. O(bodies): the event log is
+    /// folded into a chain hash as events are applied.
     pub fn state_hash(&self) -> u64 {
         let mut h = StateHasher::new(0x7374_6174_6500);
+        h.word(self.setup);
         h.u32(self.tick);
         h.u32(self.next_id);
         h.word(self.events_hash);
@@ -340,6 +366,7 @@ impl World {
     pub fn snapshot(&self) -> Snapshot {
         Snapshot {
             tick: self.tick,
+            setup: self.setup,
             bodies: self.bodies.clone(),
             next_id: self.next_id,
             events_hash: self.events_hash,
@@ -355,8 +382,14 @@ impl World {
     }
 
     /// Returns to a snapshot taken on this world within the last `rollback_ticks` ticks of
-    /// its current timeline. On error nothing changes.
+    /// its current timeline. A snapshot of a world with another level, settings or player
+    /// count is [`SimError::ForeignSnapshot`]; one of another world of the same setup, of
+    /// a clone that has diverged since, or from a rolled-back future is
+    /// [`SimError::Restore`]. On error nothing changes.
     pub fn restore(&mut self, s: &Snapshot) -> Result<(), SimError> {
+        if s.setup != self.setup {
+            return Err(SimError::ForeignSnapshot { tick: s.tick });
+        }
         self.terrain
             .rollback(&s.mark)
             .map_err(|source| SimError::Restore {

@@ -9,6 +9,7 @@
 //! produces the same bits as a run that never rolled back.
 
 use std::collections::VecDeque;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use thiserror::Error;
 
@@ -44,8 +45,12 @@ pub struct TerrainMark {
     /// Journal entries recorded before the mark (counted from the journal's start).
     pos: u64,
     /// Serial number of the entry just before the mark (0 when there is none), to tell a
-    /// mark on this timeline from one whose future was rolled back and rewritten.
+    /// mark on this timeline from one whose future was rolled back and rewritten, or from
+    /// a clone's diverged timeline.
     serial: u64,
+    /// The journal the mark was taken on (clones share it: their history is the same up
+    /// to where they diverge, which the serials tell).
+    origin: u64,
     /// The grid's counters at the mark.
     stats: GridStats,
     /// Events in the log at the mark.
@@ -86,7 +91,8 @@ pub enum RollbackError {
         /// The oldest position still kept.
         kept: u64,
     },
-    /// The mark belongs to a future that was rolled back and replaced.
+    /// The mark belongs to a future that was rolled back and replaced, to another
+    /// terrain, or to a clone of this one that has since diverged.
     #[error("the mark is not on the terrain's current timeline (journal entry {mark})")]
     NotOnTimeline {
         /// The mark's journal position.
@@ -94,21 +100,43 @@ pub enum RollbackError {
     },
 }
 
+/// Serial numbers and journal origins, unique in the process: a mark from another
+/// terrain, or from a clone that diverged, never matches by accident. They never reach the
+/// terrain's state or any hash, so determinism does not depend on them.
+static NEXT_SERIAL: AtomicU64 = AtomicU64::new(1);
+
+fn next_serial() -> u64 {
+    NEXT_SERIAL.fetch_add(1, Ordering::Relaxed)
+}
+
 /// The journal: entries with serial numbers, the oldest ones forgettable.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub(crate) struct Journal {
     entries: VecDeque<(u64, Entry)>,
     /// Entries forgotten from the front: the position of `entries[0]`.
     start: u64,
-    /// Serial number of the last entry ever recorded (never reused).
-    last_serial: u64,
+    /// Serial number of the last forgotten entry (0 when none was): what a mark at
+    /// `start` must name.
+    start_serial: u64,
+    /// Which journal this is (see [`NEXT_SERIAL`]).
+    origin: u64,
+}
+
+impl Default for Journal {
+    fn default() -> Self {
+        Journal {
+            entries: VecDeque::new(),
+            start: 0,
+            start_serial: 0,
+            origin: next_serial(),
+        }
+    }
 }
 
 impl Journal {
     /// Records an entry.
     pub(crate) fn push(&mut self, e: Entry) {
-        self.last_serial += 1;
-        self.entries.push_back((self.last_serial, e));
+        self.entries.push_back((next_serial(), e));
     }
 
     /// Position after the last entry.
@@ -120,7 +148,8 @@ impl Journal {
     pub(crate) fn mark(&self, stats: GridStats, events: u32) -> TerrainMark {
         TerrainMark {
             pos: self.end(),
-            serial: self.entries.back().map_or(0, |e| e.0),
+            serial: self.entries.back().map_or(self.start_serial, |e| e.0),
+            origin: self.origin,
             stats,
             events,
         }
@@ -128,6 +157,9 @@ impl Journal {
 
     /// Whether `m` can be returned to.
     pub(crate) fn check(&self, m: &TerrainMark) -> Result<(), RollbackError> {
+        if m.origin != self.origin {
+            return Err(RollbackError::NotOnTimeline { mark: m.pos });
+        }
         if m.pos < self.start {
             return Err(RollbackError::TooOld {
                 mark: m.pos,
@@ -137,11 +169,12 @@ impl Journal {
         if m.pos > self.end() {
             return Err(RollbackError::NotOnTimeline { mark: m.pos });
         }
-        if m.pos > self.start {
-            let before = self.entries.get((m.pos - self.start - 1) as usize);
-            if before.map(|e| e.0) != Some(m.serial) {
-                return Err(RollbackError::NotOnTimeline { mark: m.pos });
-            }
+        let before = match m.pos - self.start {
+            0 => self.start_serial,
+            n => self.entries.get((n - 1) as usize).map_or(0, |e| e.0),
+        };
+        if before != m.serial {
+            return Err(RollbackError::NotOnTimeline { mark: m.pos });
         }
         Ok(())
     }
@@ -157,8 +190,11 @@ impl Journal {
 
     /// Forgets the entries before `m` (marks older than it become [`RollbackError::TooOld`]).
     pub(crate) fn forget_before(&mut self, m: &TerrainMark) {
-        while self.start < m.pos && !self.entries.is_empty() {
-            self.entries.pop_front();
+        while self.start < m.pos {
+            let Some((serial, _)) = self.entries.pop_front() else {
+                break;
+            };
+            self.start_serial = serial;
             self.start += 1;
         }
     }
@@ -166,6 +202,8 @@ impl Journal {
     /// Forgets everything (after a rebuild, which rewrites the whole grid).
     pub(crate) fn reset(&mut self) {
         self.start = self.end();
+        // A fresh serial: no mark from before the rebuild names it.
+        self.start_serial = next_serial();
         self.entries.clear();
     }
 
