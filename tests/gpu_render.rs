@@ -186,7 +186,7 @@ fn refine_matches_exact_and_twin(ctx: &GpuContext) -> TestResult {
         ..DiffOptions::default()
     };
     for (ci, cam) in cams.iter().enumerate() {
-        let exact = render_exact(&terrain, &pal, cam, &ExactRenderOptions::default());
+        let exact = render_exact(&terrain, &pal, cam, &ExactRenderOptions::default()).unwrap();
         for scale in Scale::ALL {
             let options = RenderOptions {
                 scale,
@@ -300,7 +300,7 @@ fn direct_matches_exact_reference(ctx: &GpuContext) -> TestResult {
         Pipeline::Direct,
     )
     .map_err(|e| e.to_string())?;
-    let exact = render_exact(&terrain, &pal, &cam, &ExactRenderOptions::default());
+    let exact = render_exact(&terrain, &pal, &cam, &ExactRenderOptions::default()).unwrap();
     expect_close("direct-vs-exact", &gpu, &exact, &twin_tolerance())
 }
 
@@ -445,9 +445,25 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
         wgpu::TextureFormat::Depth32Float,
         RenderOptions::default(),
     ) {
-        Err(GpuError::TargetFormat(_)) => Ok(()),
-        other => Err(format!("a depth target gave {:?}", other.map(|_| ())).into()),
+        Err(GpuError::TargetFormat(_)) => {}
+        other => return Err(format!("a depth target gave {:?}", other.map(|_| ())).into()),
     }
+    // Targets past the device's limits, of several aspect ratios: an error, never wgpu's
+    // validation panic. The readback buffer of the widest one is past `max_buffer_size`
+    // while each side is within `max_texture_dimension_2d`.
+    let side = ctx.device.limits().max_texture_dimension_2d;
+    let rows = ctx.device.limits().max_buffer_size / (u64::from(side) * 4) + 1;
+    let mut sizes = vec![(side + 1, 16), (16, side + 1), (0, 16)];
+    if rows <= u64::from(side) {
+        sizes.push((side, rows as u32));
+    }
+    for (w, h) in sizes {
+        match craterfield::gpu::Offscreen::new(&ctx.device, w, h) {
+            Err(GpuError::LimitsTooLow { .. }) => {}
+            other => return Err(format!("a {w}x{h} target gave {:?}", other.map(|_| ())).into()),
+        }
+    }
+    Ok(())
 }
 
 /// Renders the prepared frame into a fresh texture of `format` by recording the pre-passes

@@ -142,8 +142,19 @@ fn bad_input_is_an_error(ctx: &GpuContext) -> TestResult {
     let (_, plan, camera) = all_plans().remove(0);
     let zero = marcher.render_to_rgba(&plan, &camera, 0, 10);
     assert!(matches!(zero, Err(MarchGpuError::Size { .. })), "{zero:?}");
-    let huge = marcher.render_to_rgba(&plan, &camera, 1 << 20, 10);
-    assert!(matches!(huge, Err(MarchGpuError::Size { .. })), "{huge:?}");
+    // Past a side, past the pixel budget at the largest side, and every aspect ratio.
+    for (w, h) in [
+        (1 << 20, 10),
+        (16_384, 16_384),
+        (16_384, 4_097),
+        (4_097, 16_384),
+    ] {
+        let huge = marcher.render_to_rgba(&plan, &camera, w, h);
+        assert!(
+            matches!(huge, Err(MarchGpuError::Size { .. })),
+            "{w}x{h}: {huge:?}"
+        );
+    }
     let mut bad_camera = camera;
     bad_camera.position.x = f32::NAN;
     let nan = marcher.render_to_rgba(&plan, &bad_camera, 8, 8);

@@ -113,7 +113,7 @@ fn sky_and_surface_pixels_are_the_exact_render_bit_for_bit() {
     // Deeper than this, a pixel is proven solid and shaded from the texels.
     let deep = -(shade.outline_px + 0.5);
     for cam in views() {
-        let exact = render_exact(&terrain, &pal, &cam, &ExactRenderOptions::default());
+        let exact = render_exact(&terrain, &pal, &cam, &ExactRenderOptions::default()).unwrap();
         let direct = render_direct(&terrain, &pal, &cam, &shade, 0).unwrap();
         assert_eq!(
             exact, direct,

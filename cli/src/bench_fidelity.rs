@@ -719,12 +719,9 @@ fn write_pictures(scene: &Scene, dir: &Path, threads: usize) -> Result<(), Strin
         threads,
         ..ExactRenderOptions::default()
     };
-    let mut panels = vec![render_exact(
-        &scene.terrain,
-        &scene.palette,
-        camera,
-        &exact_options,
-    )];
+    let exact = render_exact(&scene.terrain, &scene.palette, camera, &exact_options)
+        .map_err(|e| format!("{} exact: {e}", scene.name))?;
+    let mut panels = vec![exact];
     for method in METHODS {
         let options = render_options(method, Scale::Sixteenth);
         let image = render_twin(&scene.terrain, &scene.palette, camera, &options, threads)

@@ -9,8 +9,9 @@ use std::time::Instant;
 
 use craterfield::field2d::terrain::Terrain;
 use craterfield::field2d::{Level, Sdf};
+use craterfield::net::DecodeLimits;
+use craterfield::render2d::RenderOptions;
 use craterfield::render2d::overlay::draw_markers;
-use craterfield::render2d::{Camera, RenderOptions};
 use glam::Vec2;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -105,6 +106,18 @@ pub(crate) fn run(
     level: Option<&Path>,
     match_ticks: u32,
 ) -> Result<ExitCode, String> {
+    // The match is recorded as a replay, which must stay readable: refused before any work.
+    let max_ticks = DecodeLimits::default().max_ticks;
+    if match_ticks > max_ticks {
+        return Err(format!(
+            "--match-ticks {match_ticks}: a replay holds at most {max_ticks} ticks (4 hours at 60 Hz)"
+        ));
+    }
+    if events > MAX_BARRAGE {
+        return Err(format!(
+            "--events {events}: the barrage takes at most {MAX_BARRAGE} events"
+        ));
+    }
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let level = match level {
         Some(path) => Level::load(path).map_err(|e| e.to_string())?,
@@ -129,11 +142,7 @@ pub(crate) fn run(
 
     let timings_q = time_queries(&terrain, &level);
     bar.set_message("render");
-    let camera = Camera::fit(
-        level.bounds().min,
-        level.bounds().max,
-        width.clamp(64, 16384),
-    );
+    let camera = frame::camera(&level, width)?;
     let palette: Vec<[u8; 3]> = level.materials().iter().map(|m| m.color).collect();
     let t = Instant::now();
     let drawn = render_frame::render(&terrain, &palette, &camera, &RenderOptions::default())?;
@@ -232,6 +241,9 @@ pub(crate) fn run(
     Ok(ExitCode::SUCCESS)
 }
 
+/// Most events `--events` asks for (a terrain's default event budget).
+const MAX_BARRAGE: usize = 1_000_000;
+
 /// Plays, records and pictures the scripted match. `Ok(Err(..))`: the match could not be
 /// played (a level without spawn points, say); `Err`: the files could not be written.
 fn play_match(
@@ -261,7 +273,7 @@ fn play_match(
     let replay_path = out.join("match.replay");
     std::fs::write(&replay_path, &bytes)
         .map_err(|e| format!("cannot write {}: {e}", replay_path.display()))?;
-    let img = frame::render(level, &played.world, width);
+    let img = frame::render(level, &played.world, width)?;
     let png = out.join("match.png");
     img.save(&png)
         .map_err(|e| format!("cannot write {}: {e}", png.display()))?;

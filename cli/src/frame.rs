@@ -3,7 +3,9 @@
 //! with a health bar, projectiles as small dots, debris grey).
 
 use craterfield::field2d::Level;
-use craterfield::render2d::{Camera, ExactRenderOptions, render_exact};
+use craterfield::render2d::{
+    Camera, ExactRenderOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, render_exact,
+};
 use craterfield::sim::{Body, BodyKind, World};
 use glam::Vec2;
 use image::RgbaImage;
@@ -24,17 +26,38 @@ const DEBRIS: [u8; 3] = [150, 150, 150];
 const DEBRIS_EDGE: [u8; 3] = [80, 80, 84];
 const OUTLINE: [u8; 3] = [20, 20, 24];
 
-/// The world as `world` holds it now, fitted to an image `width` pixels wide.
-pub(crate) fn render(level: &Level, world: &World, width: u32) -> RgbaImage {
+/// The camera a frame of `level` is drawn with: the level's bounds in an image `width`
+/// pixels wide, the height following the aspect ratio. An image the renderers refuse
+/// (a tall or thin level, or a width too large) is an error that says which width fits.
+pub(crate) fn camera(level: &Level, width: u32) -> Result<Camera, String> {
     let b = level.bounds();
-    let camera = Camera::fit(b.min, b.max, width.clamp(64, 16384));
+    let camera = Camera::fit(b.min, b.max, width);
+    camera.validate().map_err(|e| {
+        let size = b.max - b.min;
+        let fits = Camera::fit_within(b.min, b.max, MAX_IMAGE_SIDE, MAX_IMAGE_SIDE);
+        let budget = (MAX_IMAGE_PIXELS as f64 * f64::from(size.x / size.y)).sqrt();
+        let widest = fits.width.min(budget.floor() as u32);
+        format!(
+            "cannot draw level \"{}\" ({} x {} units) {width} pixels wide: {e}; at most {widest} pixels wide fits",
+            level.name(),
+            size.x,
+            size.y
+        )
+    })?;
+    Ok(camera)
+}
+
+/// The world as `world` holds it now, in an image `width` pixels wide (see [`camera`]).
+pub(crate) fn render(level: &Level, world: &World, width: u32) -> Result<RgbaImage, String> {
+    let camera = camera(level, width)?;
     let palette: Vec<[u8; 3]> = level.materials().iter().map(|m| m.color).collect();
     let mut img = render_exact(
         world.terrain(),
         &palette,
         &camera,
         &ExactRenderOptions::default(),
-    );
+    )
+    .map_err(|e| e.to_string())?;
     let max_health = world.settings().vehicle.health.max(1);
     let mut canvas = Canvas {
         img: &mut img,
@@ -59,7 +82,7 @@ pub(crate) fn render(level: &Level, world: &World, width: u32) -> RgbaImage {
             canvas.body(body, 2.0, color, OUTLINE, 0.8);
         }
     }
-    img
+    Ok(img)
 }
 
 struct Canvas<'a> {
@@ -190,7 +213,7 @@ mod tests {
         let mut world = World::new(&level, Settings::default(), 2).unwrap();
         let rock = Vec2::new(1900.0, 1400.0);
         world.add_debris(rock, 24.0).unwrap();
-        let img = render(&level, &world, 960);
+        let img = render(&level, &world, 960).unwrap();
         let camera = Camera::fit(level.bounds().min, level.bounds().max, 960);
         let at = |p: Vec2| {
             let q = camera.world_to_pixel(p);

@@ -11,7 +11,6 @@ use std::time::Instant;
 use craterfield::field2d::{Graph, Level, Terrain};
 use craterfield::gpu::GpuContext;
 use craterfield::gpu::READBACK_FORMAT;
-use craterfield::render2d::check_camera;
 use craterfield::render2d::gpu::TerrainRenderer;
 use craterfield::render2d::gpu::{Pipeline, render_to_image};
 use craterfield::render2d::twin::{exact_field, render_direct, render_refine_overlay};
@@ -262,7 +261,9 @@ fn camera(options: &Options, level: &Level) -> Result<Camera, String> {
         ([], None, Some(_)) => return Err("--height needs --width".into()),
         _ => return Err("--view takes four numbers: X0,Y0,X1,Y1".into()),
     };
-    check_camera(&camera).map_err(|e| format!("cannot render this view: {e}"))?;
+    camera
+        .validate()
+        .map_err(|e| format!("cannot render this view: {e}"))?;
     Ok(camera)
 }
 

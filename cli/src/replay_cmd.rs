@@ -25,7 +25,8 @@ fn load_level(level: Option<&Path>) -> Result<Level, String> {
 /// Reads and decodes a replay file; returns it with its size in bytes and the format
 /// version in its header.
 fn load(file: &Path) -> Result<(Replay, usize, u16), String> {
-    let bytes = std::fs::read(file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+    let limit = craterfield::net::DecodeLimits::default().max_bytes as u64;
+    let bytes = craterfield::files::read(file, limit).map_err(|e| e.to_string())?;
     let replay = Replay::decode(&bytes)
         .map_err(|e| format!("{}: not a readable replay: {e}", file.display()))?;
     // A decoded replay has its magic and version, so these bytes exist.
@@ -168,8 +169,10 @@ pub(crate) fn render(
     level: Option<&Path>,
 ) -> Result<ExitCode, String> {
     let level = load_level(level)?;
+    // Checked before the re-simulation, which may take a while.
+    frame::camera(&level, width)?;
     let (world, tick, ticks) = simulate_to(file, tick, &level)?;
-    let img = frame::render(&level, &world, width);
+    let img = frame::render(&level, &world, width)?;
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;

@@ -661,3 +661,106 @@ fn render_refuses_views_and_options_it_cannot_draw() {
     assert!(!png.exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A one-circle level with the given bounds (and one spawn point).
+fn level_of_bounds(dir: &Path, name: &str, max: (f32, f32)) -> PathBuf {
+    let (w, h) = max;
+    let text = format!(
+        "Level(name: \"{name}\", bounds: (min: (0.0, 0.0), max: ({w:.1}, {h:.1})), cell_size: 64.0,\n\
+         materials: [(name: \"rock\", color: (96, 90, 100))], spawns: [({:.1}, {:.1})],\n\
+         root: Circle(center: ({:.1}, {:.1}), radius: 4.0), nodes: {{}})\n",
+        w / 2.0,
+        h - 1.0,
+        w / 2.0,
+        h / 2.0
+    );
+    let path = dir.join(format!("{name}.ron"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn images_of_any_aspect_ratio_are_refused_with_the_width_that_fits() {
+    let dir = temp_dir("aspect");
+    // The default level past the pixel budget, and levels whose aspect ratio makes one
+    // side (or the pixel count) too large at the width asked for.
+    let cases: Vec<(Option<PathBuf>, &str)> = vec![
+        (None, "12800"),
+        (None, "20000"),
+        (Some(level_of_bounds(&dir, "tall", (16.0, 65_536.0))), "64"),
+        (
+            Some(level_of_bounds(&dir, "wide", (65_536.0, 16.0))),
+            "16385",
+        ),
+        (
+            Some(level_of_bounds(&dir, "square", (4096.0, 4096.0))),
+            "9000",
+        ),
+    ];
+    for (level, width) in &cases {
+        let mut cmd = craterfield();
+        cmd.args([
+            "demo",
+            "--events",
+            "0",
+            "--match-ticks",
+            "0",
+            "--width",
+            width,
+        ]);
+        if let Some(level) = level {
+            cmd.arg("--level").arg(level);
+        }
+        let out = cmd.arg("--out").arg(dir.join("out")).output().unwrap();
+        assert_refused(&out, "pixels wide fits");
+    }
+    // The same camera check runs before `replay render` re-simulates anything.
+    let file = match_file(&dir);
+    let tall = level_of_bounds(&dir, "tall", (16.0, 65_536.0));
+    let out = craterfield()
+        .args(["replay", "render"])
+        .arg(&file)
+        .arg("--level")
+        .arg(&tall)
+        .args(["--tick", "0", "--out"])
+        .arg(dir.join("tall.png"))
+        .output()
+        .unwrap();
+    assert_refused(&out, "cannot draw level \"tall\"");
+    // A size that fits is drawn.
+    let square = level_of_bounds(&dir, "square", (4096.0, 4096.0));
+    let out = craterfield()
+        .args([
+            "demo",
+            "--events",
+            "0",
+            "--match-ticks",
+            "0",
+            "--width",
+            "256",
+            "--level",
+        ])
+        .arg(&square)
+        .arg("--out")
+        .arg(dir.join("ok"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let img = image::open(dir.join("ok/terrain.png")).unwrap();
+    assert_eq!((img.width(), img.height()), (256, 256));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_match_longer_than_a_replay_holds_is_refused_before_it_starts() {
+    let dir = temp_dir("long-match");
+    for ticks in ["864001", "4294967295"] {
+        let out = craterfield()
+            .args(["demo", "--events", "0", "--match-ticks", ticks, "--out"])
+            .arg(&dir)
+            .output()
+            .unwrap();
+        assert_refused(&out, "a replay holds at most 864000 ticks");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -12,12 +12,12 @@ pub enum GpuError {
     /// The adapter refused to create a device.
     #[error("could not create a GPU device: {0}")]
     RequestDevice(String),
-    /// A buffer or texture would exceed the device's limits.
-    #[error("{what} need {needed} bytes, above the device limit of {limit}")]
+    /// A buffer or texture would exceed the device's limits (or is empty).
+    #[error("{what}: {needed} needed, outside the device's limit of 1..={limit}")]
     LimitsTooLow {
-        /// What was being allocated.
+        /// What was being allocated, with its unit (`readback buffer (bytes)`).
         what: &'static str,
-        /// Bytes needed.
+        /// Bytes, or pixels per side, needed.
         needed: u64,
         /// The device's limit.
         limit: u64,

@@ -9,12 +9,14 @@
 mod cache;
 mod context;
 mod error;
+mod limits;
 mod offscreen;
 mod timing;
 
 pub use cache::PipelineCache;
 pub use context::GpuContext;
 pub use error::GpuError;
+pub(crate) use limits::{check_buffer, check_storage, check_texture};
 pub(crate) use offscreen::map_read;
 pub use offscreen::{Offscreen, READBACK_FORMAT};
 pub use timing::Timestamps;

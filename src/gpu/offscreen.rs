@@ -45,14 +45,10 @@ impl Offscreen {
         height: u32,
         usage: wgpu::TextureUsages,
     ) -> Result<Offscreen, GpuError> {
-        let limit = device.limits().max_texture_dimension_2d;
-        if width == 0 || height == 0 || width > limit || height > limit {
-            return Err(GpuError::LimitsTooLow {
-                what: "render target (pixels per side)",
-                needed: u64::from(width.max(height)),
-                limit: u64::from(limit),
-            });
-        }
+        super::check_texture(device, "render target (pixels per side)", width, height)?;
+        let padded_row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let buffer_bytes = u64::from(padded_row) * u64::from(height);
+        super::check_buffer(device, "readback buffer (bytes)", buffer_bytes)?;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("craterfield offscreen"),
             size: wgpu::Extent3d {
@@ -68,10 +64,9 @@ impl Offscreen {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let padded_row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("craterfield readback"),
-            size: u64::from(padded_row) * u64::from(height),
+            size: buffer_bytes,
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });

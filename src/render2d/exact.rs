@@ -8,7 +8,7 @@
 use glam::Vec2;
 use image::RgbaImage;
 
-use super::camera::Camera;
+use super::camera::{Camera, CameraError};
 use super::options::ShadeOptions;
 use super::twin::Shader;
 use crate::field2d::Sdf;
@@ -25,13 +25,15 @@ pub struct ExactRenderOptions {
 const TILE: u32 = 8;
 
 /// Render `field` through `camera`, colouring material `i` with `palette[i]` (unknown
-/// materials are drawn magenta so they stand out).
+/// materials are drawn magenta so they stand out). Fails, before allocating the image,
+/// where [`Camera::validate`] does.
 pub fn render_exact<F: Sdf + Sync>(
     field: &F,
     palette: &[[u8; 3]],
     camera: &Camera,
     opts: &ExactRenderOptions,
-) -> RgbaImage {
+) -> Result<RgbaImage, CameraError> {
+    camera.validate()?;
     let (w, h) = (camera.width, camera.height);
     let mut img = RgbaImage::new(w, h);
     let tiles_y = h.div_ceil(TILE);
@@ -68,7 +70,7 @@ pub fn render_exact<F: Sdf + Sync>(
             });
         }
     });
-    img
+    Ok(img)
 }
 
 struct Painter<'a, F> {

@@ -36,7 +36,7 @@ use serde::Serialize;
 use thiserror::Error;
 
 use super::camera::Camera;
-use super::lattice::{LatticeError, check_camera};
+use super::camera::CameraError;
 use crate::field2d::Terrain;
 use crate::field2d::sdf::Sdf;
 use crate::field2d::tape::EvalError;
@@ -158,7 +158,7 @@ pub enum FidelityError {
     },
     /// The camera cannot be rendered.
     #[error("camera: {0}")]
-    Camera(#[from] LatticeError),
+    Camera(#[from] CameraError),
     /// The terrain's batch evaluator failed.
     #[error("terrain evaluation: {0}")]
     Eval(#[from] EvalError),
@@ -217,7 +217,7 @@ pub fn exact_distances<F: Sdf + Sync>(
     camera: &Camera,
     threads: usize,
 ) -> Result<Vec<f32>, FidelityError> {
-    check_camera(camera)?;
+    camera.validate()?;
     let (w, h) = (camera.width as usize, camera.height as usize);
     let mut out = vec![0.0f32; w * h];
     let threads = match threads {

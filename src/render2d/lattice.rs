@@ -9,47 +9,13 @@
 //! The GPU renderer receives the same numbers in its uniforms (see `gpu::uniforms`).
 
 use glam::Vec2;
-use thiserror::Error;
 
-use super::camera::Camera;
+use super::camera::{Camera, CameraError};
 use super::options::Scale;
 
 /// Texels kept beyond the view on every side: bicubic taps read 2 texels around a pixel,
 /// reconstruction 1 more.
 pub(crate) const MARGIN: i32 = 3;
-
-/// Largest output image accepted, per axis (pixels).
-pub(crate) const MAX_IMAGE_SIDE: u32 = 16_384;
-
-/// Why a camera cannot be rendered.
-#[derive(Clone, Copy, Debug, PartialEq, Error)]
-#[non_exhaustive]
-pub enum LatticeError {
-    /// The image is empty or larger than `MAX_IMAGE_SIDE` on some axis.
-    #[error(
-        "image size {width}x{height} must be between 1x1 and {MAX_IMAGE_SIDE}x{MAX_IMAGE_SIDE}"
-    )]
-    BadSize {
-        /// Width, pixels.
-        width: u32,
-        /// Height, pixels.
-        height: u32,
-    },
-    /// The camera centre is NaN or infinite.
-    #[error("camera center {center} must be finite")]
-    BadCenter {
-        /// The centre.
-        center: Vec2,
-    },
-    /// The zoom is not a positive finite number, or puts the view beyond `f32` range.
-    #[error(
-        "camera units_per_pixel = {value} must be positive, finite and keep the view within +-1e7 world units"
-    )]
-    BadZoom {
-        /// The zoom.
-        value: f32,
-    },
-}
 
 /// The texel lattice of one camera at one scale.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,8 +34,8 @@ pub struct Lattice {
 
 impl Lattice {
     /// The lattice covering `camera`'s view plus `MARGIN` texels at `scale`.
-    pub fn new(camera: &Camera, scale: Scale) -> Result<Lattice, LatticeError> {
-        check_camera(camera)?;
+    pub fn new(camera: &Camera, scale: Scale) -> Result<Lattice, CameraError> {
+        camera.validate()?;
         let upp = camera.units_per_pixel;
         let h = upp * scale.divisor() as f32;
         let half = Vec2::new(camera.width as f32, camera.height as f32) * 0.5 * upp;
@@ -117,28 +83,6 @@ impl Lattice {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
-}
-
-/// Checks a camera's size, centre and zoom.
-pub fn check_camera(camera: &Camera) -> Result<(), LatticeError> {
-    let (w, h) = (camera.width, camera.height);
-    if w == 0 || h == 0 || w > MAX_IMAGE_SIDE || h > MAX_IMAGE_SIDE {
-        return Err(LatticeError::BadSize {
-            width: w,
-            height: h,
-        });
-    }
-    if !camera.center.is_finite() {
-        return Err(LatticeError::BadCenter {
-            center: camera.center,
-        });
-    }
-    let upp = camera.units_per_pixel;
-    let reach = camera.center.abs().max_element() + upp * w.max(h) as f32 * 32.0;
-    if !(upp.is_finite() && upp > 0.0 && reach <= 1.0e7) {
-        return Err(LatticeError::BadZoom { value: upp });
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -14,9 +14,9 @@ pub(crate) mod options;
 pub mod overlay;
 pub mod twin;
 
-pub use camera::Camera;
+pub use camera::{Camera, CameraError, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 pub use exact::{ExactRenderOptions, render_exact};
-pub use lattice::{Lattice, LatticeError, check_camera};
+pub use lattice::Lattice;
 pub use options::{Reconstruction, RenderOptions, Scale, ShadeOptions, Upsample};
 pub use twin::{
     FieldImage, LowRes, RefineStats, Texel, TwinError, field_image, render_refine, render_twin,

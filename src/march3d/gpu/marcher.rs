@@ -209,8 +209,19 @@ impl Marcher {
         width: u32,
         height: u32,
     ) -> Result<(), MarchGpuError> {
-        let limit = self.device.limits().max_texture_dimension_2d;
-        if width == 0 || height == 0 || width > limit || height > limit {
+        // The CPU tracer's limits too: the same image sizes on both renderers.
+        let limit = self
+            .device
+            .limits()
+            .max_texture_dimension_2d
+            .min(crate::march3d::cpu::MAX_SIDE);
+        let pixels = u64::from(width) * u64::from(height);
+        if width == 0
+            || height == 0
+            || width > limit
+            || height > limit
+            || pixels > crate::march3d::cpu::MAX_PIXELS
+        {
             return Err(MarchGpuError::Size {
                 width,
                 height,

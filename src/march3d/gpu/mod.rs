@@ -25,8 +25,12 @@ pub enum MarchGpuError {
     /// The plan cannot be turned into WGSL.
     #[error("plan: {0}")]
     Plan(#[from] PlanError),
-    /// The image size is zero or above the device's texture limit.
-    #[error("image size {width}x{height} is not within 1..={limit} per side")]
+    /// The image size is zero, above the device's texture limit, or holds more than
+    /// [`crate::march3d::cpu::MAX_PIXELS`] pixels.
+    #[error(
+        "image size {width}x{height} is not within 1..={limit} per side and {} pixels",
+        crate::march3d::cpu::MAX_PIXELS
+    )]
     Size {
         /// Requested width.
         width: u32,

@@ -107,7 +107,12 @@ impl GridMirror {
             slots: Vec::new(),
             arena_used: 0,
             bricks: Storage::new(device, "craterfield bricks", 1, 4),
-            max_binding: device.limits().max_storage_buffer_binding_size,
+            max_binding: {
+                let limits = device.limits();
+                limits
+                    .max_storage_buffer_binding_size
+                    .min(limits.max_buffer_size)
+            },
         }
     }
 
@@ -170,7 +175,7 @@ impl GridMirror {
     /// Fresh buffers sized for `grid`, nothing sent yet.
     fn reset(&mut self, device: &wgpu::Device, grid: &Grid) -> Result<(), GpuError> {
         let cells = grid.cell_count() as u64;
-        self.check_size("grid cells", cells * 16)?;
+        self.check_size("grid cells (bytes)", cells * 16)?;
         self.cells = Storage::new(device, "craterfield cells", cells, 16);
         self.sent_revisions = vec![u64::MAX; grid.cell_count()];
         self.slots = vec![(0, 0); grid.cell_count()];
@@ -194,7 +199,7 @@ impl GridMirror {
             .count();
         if events.len() as u64 > self.events.capacity {
             let capacity = (events.len() as u64).next_power_of_two();
-            self.check_size("events", capacity * 32)?;
+            self.check_size("events (bytes)", capacity * 32)?;
             self.events = Storage::new(device, "craterfield events", capacity, 32);
             stats.reallocated = true;
             first = 0;
@@ -261,7 +266,7 @@ impl GridMirror {
         }
         self.arena_used = next;
         let capacity = (u64::from(next) * 2).max(1024);
-        self.check_size("event lists", capacity * 4)?;
+        self.check_size("event lists (bytes)", capacity * 4)?;
         self.lists = Storage::new(device, "craterfield lists", capacity, 4);
         Ok(())
     }
@@ -284,7 +289,7 @@ impl GridMirror {
             return Ok(());
         }
         let bricks = needed.next_power_of_two();
-        self.check_size("bricks", bricks * words * 4)?;
+        self.check_size("bricks (bytes)", bricks * words * 4)?;
         self.bricks = Storage::new(device, "craterfield bricks", bricks * words, 4);
         stats.reallocated = true;
         Ok(())

@@ -75,14 +75,7 @@ impl ProofMirror {
         let reset = self.identity != Some(identity);
         if reset {
             let bytes = (cells as u64 + 1) * RECORD;
-            let limit = device.limits().max_storage_buffer_binding_size;
-            if bytes > limit {
-                return Err(GpuError::LimitsTooLow {
-                    what: "refine cell proofs",
-                    needed: bytes,
-                    limit,
-                });
-            }
+            crate::gpu::check_storage(device, "refine cell proofs (bytes)", bytes)?;
             self.buffer = proof_buffer(device, cells as u64 + 1);
             self.records = vec![GpuCellProof::default(); cells + 1];
             self.sent_revisions = vec![u64::MAX; cells];
@@ -161,7 +154,6 @@ impl RefineTargets {
         let blocks = u64::from(dims.0) * u64::from(dims.1);
         let state_bytes = std::mem::size_of::<GpuBlockState>() as u64;
         let corners = u64::from(dims.0 + 1) * u64::from(dims.1 + 1);
-        let limit = device.limits().max_storage_buffer_binding_size;
         if blocks >= 1 << OPEN_INDEX_BITS {
             return Err(GpuError::Unsupported(format!(
                 "draw refine at {width}x{height}: its block list holds at most 2^28 blocks"
@@ -169,18 +161,15 @@ impl RefineTargets {
         }
         let pixels_per_block = (BLOCK * BLOCK) as u64;
         for (what, bytes) in [
-            ("refine block states", blocks * state_bytes),
-            ("refine corner samples", corners * 16),
-            ("refine exact colours", blocks * pixels_per_block * 8),
-            ("refine block list", (blocks + 1) * 4),
+            ("refine block states (bytes)", blocks * state_bytes),
+            ("refine corner samples (bytes)", corners * 16),
+            (
+                "refine exact colours (bytes)",
+                blocks * pixels_per_block * 8,
+            ),
+            ("refine block list (bytes)", (blocks + 1) * 4),
         ] {
-            if bytes > limit {
-                return Err(GpuError::LimitsTooLow {
-                    what,
-                    needed: bytes,
-                    limit,
-                });
-            }
+            crate::gpu::check_storage(device, what, bytes)?;
         }
         let storage = |label: &str, bytes: u64, extra: wgpu::BufferUsages| {
             device.create_buffer(&wgpu::BufferDescriptor {

@@ -474,14 +474,12 @@ impl TerrainRenderer {
         if fits {
             return Ok(());
         }
-        let limit = self.device.limits().max_texture_dimension_2d;
-        if w > limit || h > limit {
-            return Err(GpuError::LimitsTooLow {
-                what: "reduced-scale textures (texels per side)",
-                needed: u64::from(w.max(h)),
-                limit: u64::from(limit),
-            });
-        }
+        crate::gpu::check_texture(
+            &self.device,
+            "reduced-scale textures (texels per side)",
+            w,
+            h,
+        )?;
         let make = |label: &str| {
             self.device
                 .create_texture(&wgpu::TextureDescriptor {

@@ -32,7 +32,8 @@ mod upsample;
 use glam::Vec2;
 use thiserror::Error;
 
-use super::lattice::{Lattice, LatticeError};
+use super::camera::CameraError;
+use super::lattice::Lattice;
 use crate::field2d::tape::EvalError;
 
 pub use f16::{F16_MAX, f16_bits, f16_to_f32, round_f16};
@@ -105,9 +106,9 @@ pub struct FieldImage {
 #[derive(Clone, Debug, PartialEq, Error)]
 #[non_exhaustive]
 pub enum TwinError {
-    /// The camera cannot be laid out as a lattice.
+    /// The camera cannot be rendered (see [`crate::render2d::Camera::validate`]).
     #[error("camera: {0}")]
-    Lattice(#[from] LatticeError),
+    Camera(#[from] CameraError),
     /// The terrain's batch evaluator failed.
     #[error("terrain evaluation: {0}")]
     Eval(#[from] EvalError),

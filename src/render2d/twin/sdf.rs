@@ -7,7 +7,8 @@ use super::f16::round_f16;
 use super::threads::{resolve, run_units};
 use super::{LowRes, Texel, TwinError};
 use crate::field2d::{Sample, Sdf, Terrain};
-use crate::render2d::lattice::{Lattice, MAX_IMAGE_SIDE};
+use crate::render2d::camera::MAX_IMAGE_SIDE;
+use crate::render2d::lattice::Lattice;
 use crate::render2d::options::Scale;
 
 /// Most texels per batch call: large enough for the evaluator's cell grouping to pay off,
