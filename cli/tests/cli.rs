@@ -764,3 +764,45 @@ fn a_match_longer_than_a_replay_holds_is_refused_before_it_starts() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Every command that reads a file refuses a device, a FIFO (which would block) and a
+/// directory at once, naming what it is: never reading until memory runs out.
+#[cfg(unix)]
+#[test]
+fn every_reader_refuses_special_files() {
+    let dir = temp_dir("special");
+    let fifo = dir.join("fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let png = dir.join("a.png");
+    write_diff_image(&png, [10, 20, 30], 8);
+    let specials = [
+        (PathBuf::from("/dev/zero"), "character device"),
+        (fifo, "FIFO"),
+        (dir.clone(), "directory"),
+    ];
+    for (special, kind) in &specials {
+        let s = special.to_str().unwrap();
+        let p = png.to_str().unwrap();
+        let out_png = dir.join("out.png");
+        let o = out_png.to_str().unwrap();
+        let runs: Vec<Vec<&str>> = vec![
+            vec!["level", "check", s],
+            vec!["replay", "info", s],
+            vec!["replay", "verify", s],
+            vec!["march3d", "--scene", s, "--out", o],
+            vec!["demo", "--level", s, "--out", o],
+            vec!["diff", s, p],
+            vec!["diff", p, s],
+        ];
+        for args in runs {
+            let out = craterfield().args(&args).output().unwrap();
+            // `level check` reports per file on stdout; the others on stderr.
+            let stderr = text(&out.stderr) + &text(&out.stdout);
+            assert!(!out.status.success(), "{args:?}");
+            assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+            assert!(stderr.contains(kind), "{args:?}: expected {kind:?} in {stderr}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
