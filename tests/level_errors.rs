@@ -314,3 +314,39 @@ fn duplicate_node_names_are_errors() {
     let msg = error_of(&level_with("Circle(radius: 3.0, radius: 4.0)", ""));
     assert_mentions(&msg, &["duplicate field", "radius", "5:"]);
 }
+
+/// Parameters whose Lipschitz bound makes queries meaningless are refused wherever they
+/// come from: a tiny noise or wave wavelength for its amplitude, a huge factor in an
+/// expression, at the root or nested. Each names the node.
+#[test]
+fn parameters_that_make_queries_meaningless_are_refused() {
+    for (root, path) in [
+        (
+            "DisplaceNoise(amplitude: 8.0, wavelength: 1e-30, node: Circle(radius: 50.0))",
+            "root.DisplaceNoise",
+        ),
+        (
+            "DisplaceNoise(amplitude: 1000.0, wavelength: 0.01, node: Circle(radius: 50.0))",
+            "root.DisplaceNoise",
+        ),
+        (
+            "DisplaceWave(amplitude: 100.0, wavelength: 1e-6, direction: 0.0, node: Circle(radius: 50.0))",
+            "root.DisplaceWave",
+        ),
+        (
+            "Union([Circle(radius: 5.0), Translate(offset: (1.0, 0.0), node: Mul(X, Const(1e8)))])",
+            "root.Union[1].Translate.node.Mul",
+        ),
+        ("Mul(X, Const(1e30))", "root.Mul"),
+    ] {
+        let msg = error_of(&level_with(root, ""));
+        assert_mentions(&msg, &[path, "Lipschitz bound", "past the limit"]);
+    }
+    // Gentle ones compile.
+    for root in [
+        "DisplaceNoise(amplitude: 8.0, wavelength: 40.0, node: Circle(radius: 50.0))",
+        "Mul(X, Const(3.0))",
+    ] {
+        Level::from_ron(&level_with(root, "")).unwrap();
+    }
+}

@@ -801,7 +801,10 @@ fn every_reader_refuses_special_files() {
             let stderr = text(&out.stderr) + &text(&out.stdout);
             assert!(!out.status.success(), "{args:?}");
             assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
-            assert!(stderr.contains(kind), "{args:?}: expected {kind:?} in {stderr}");
+            assert!(
+                stderr.contains(kind),
+                "{args:?}: expected {kind:?} in {stderr}"
+            );
         }
     }
     std::fs::remove_dir_all(&dir).ok();

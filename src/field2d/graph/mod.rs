@@ -61,6 +61,10 @@ pub struct GraphLimits {
     pub max_points: usize,
     /// Largest accepted coordinate or size magnitude.
     pub max_coordinate: f32,
+    /// Largest accepted Lipschitz bound of any node. Queries step by `distance /
+    /// lipschitz`: past this a raycast or a sphere trace crawls (a noise wavelength of
+    /// 1e-30 gave a bound of 2.55e31, and every raycast hit at its origin).
+    pub max_lipschitz: f32,
 }
 
 impl Default for GraphLimits {
@@ -71,6 +75,7 @@ impl Default for GraphLimits {
             max_cost: 200_000,
             max_points: 65_536,
             max_coordinate: 1.0e6,
+            max_lipschitz: 1.0e4,
         }
     }
 }

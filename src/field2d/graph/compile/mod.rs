@@ -172,6 +172,20 @@ impl Compiler<'_> {
                 reason: format!("`{}` nodes cannot be compiled", node.kind()),
             });
         };
+        // The bound every query steps by: NaN or past the limit makes queries meaningless,
+        // whichever parameter (a tiny wavelength or scale, a huge factor) caused it. An
+        // infinite bound is an expression's "unknown": the terrain bounds its cells by
+        // interval arithmetic instead.
+        let lipschitz = info.lipschitz;
+        if lipschitz.is_nan() || (lipschitz.is_finite() && lipschitz > self.limits.max_lipschitz) {
+            return Err(LevelError::Invalid {
+                path,
+                reason: format!(
+                    "its Lipschitz bound {:e} is past the limit of {:e}: queries could not step through it (a wavelength or scale too small for its amplitude, or a factor too large)",
+                    info.lipschitz, self.limits.max_lipschitz
+                ),
+            });
+        }
         self.push(op, info, &path)
     }
 

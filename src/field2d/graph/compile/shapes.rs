@@ -319,8 +319,16 @@ fn half_plane_bounds(n: Vec2, p: Vec2) -> Aabb {
     b
 }
 
+/// Most edge-pair tests (and grid insertions) one polygon's simplicity check may cost:
+/// about a tenth of a second. Ordinary polygons of the largest accepted size need a few
+/// times their vertex count; a polygon whose edges pile into a few places (a star of long
+/// spikes) is refused with a message instead of taking quadratic time.
+const SIMPLICITY_BUDGET: u64 = 1 << 25;
+
 /// Checks that a polygon has non-zero area, no repeated consecutive vertices and no
-/// intersecting non-adjacent edges (O(n²); the vertex count is limited).
+/// intersecting non-adjacent edges. Edges are bucketed in a uniform grid of about one cell
+/// per edge, and only edges sharing a cell are tested against each other, within
+/// [`SIMPLICITY_BUDGET`].
 fn check_simple_polygon(pts: &[Vec2]) -> Result<(), String> {
     let n = pts.len();
     for i in 0..n {
@@ -341,28 +349,88 @@ fn check_simple_polygon(pts: &[Vec2]) -> Result<(), String> {
     if area2.abs() < 1e-9 {
         return Err("degenerate polygon: zero area".into());
     }
-    if n > 4 {
-        for i in 0..n {
-            for j in i + 2..n {
-                if i == 0 && j == n - 1 {
-                    continue;
-                }
-                if segments_intersect(pts[i], pts[(i + 1) % n], pts[j], pts[(j + 1) % n]) {
-                    return Err(format!("polygon is not simple: edge {i} crosses edge {j}"));
-                }
-            }
-        }
-    } else if n == 4
+    if n == 4
         && (segments_intersect(pts[0], pts[1], pts[2], pts[3])
             || segments_intersect(pts[1], pts[2], pts[3], pts[0]))
     {
         return Err("polygon is not simple: its edges cross".into());
     }
+    if n > 4 {
+        check_edges_apart(pts)?;
+    }
+    Ok(())
+}
+
+/// Whether edges `i` and `j` (`i < j`) of an `n`-gon share a vertex.
+fn adjacent(i: usize, j: usize, n: usize) -> bool {
+    j == i + 1 || (i == 0 && j == n - 1)
+}
+
+/// No two non-adjacent edges of a polygon (more than 4 vertices) touch.
+fn check_edges_apart(pts: &[Vec2]) -> Result<(), String> {
+    let n = pts.len();
+    let edge = |i: usize| (pts[i].as_dvec2(), pts[(i + 1) % n].as_dvec2());
+    let (lo, hi) = pts.iter().fold(
+        (glam::DVec2::splat(f64::MAX), glam::DVec2::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(p.as_dvec2()), hi.max(p.as_dvec2())),
+    );
+    let side = (n as f64).sqrt().ceil().max(1.0) as usize;
+    let size = (hi - lo).max(glam::DVec2::splat(1e-30)) / side as f64;
+    let cell = |v: f64, lo: f64, size: f64| (((v - lo) / size) as usize).min(side - 1);
+    let mut work = 0u64;
+    let over_budget = || {
+        format!(
+            "polygon of {n} vertices is too costly to check for crossing edges (its edges crowd into few places; past {SIMPLICITY_BUDGET} tests): split it into simpler polygons"
+        )
+    };
+    // Each edge goes into every cell its bounding box covers.
+    let mut cells: Vec<Vec<u32>> = vec![Vec::new(); side * side];
+    for i in 0..n {
+        let (a, b) = edge(i);
+        let (x0, x1) = (
+            cell(a.x.min(b.x), lo.x, size.x),
+            cell(a.x.max(b.x), lo.x, size.x),
+        );
+        let (y0, y1) = (
+            cell(a.y.min(b.y), lo.y, size.y),
+            cell(a.y.max(b.y), lo.y, size.y),
+        );
+        work += ((x1 - x0 + 1) * (y1 - y0 + 1)) as u64;
+        if work > SIMPLICITY_BUDGET {
+            return Err(over_budget());
+        }
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                cells[y * side + x].push(i as u32);
+            }
+        }
+    }
+    for list in &cells {
+        work += (list.len() * list.len().saturating_sub(1) / 2) as u64;
+        if work > SIMPLICITY_BUDGET {
+            return Err(over_budget());
+        }
+        for (k, &i) in list.iter().enumerate() {
+            for &j in &list[k + 1..] {
+                let (i, j) = (i.min(j) as usize, i.max(j) as usize);
+                if adjacent(i, j, n) {
+                    continue;
+                }
+                let ((a, b), (c, d)) = (edge(i), edge(j));
+                if segments_intersect_f64(a, b, c, d) {
+                    return Err(format!("polygon is not simple: edge {i} crosses edge {j}"));
+                }
+            }
+        }
+    }
     Ok(())
 }
 
 fn segments_intersect(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> bool {
-    let (a, b, c, d) = (a.as_dvec2(), b.as_dvec2(), c.as_dvec2(), d.as_dvec2());
+    segments_intersect_f64(a.as_dvec2(), b.as_dvec2(), c.as_dvec2(), d.as_dvec2())
+}
+
+fn segments_intersect_f64(a: glam::DVec2, b: glam::DVec2, c: glam::DVec2, d: glam::DVec2) -> bool {
     let orient = |p: glam::DVec2, q: glam::DVec2, r: glam::DVec2| (q - p).perp_dot(r - p);
     let (o1, o2, o3, o4) = (
         orient(a, b, c),
@@ -381,4 +449,98 @@ fn segments_intersect(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> bool {
             && r.y <= p.y.max(q.y)
     };
     on(a, b, c, o1) || on(a, b, d, o2) || on(c, d, a, o3) || on(c, d, b, o4)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The quadratic definition: some non-adjacent pair of edges touches.
+    fn crosses_brute(pts: &[Vec2]) -> bool {
+        let n = pts.len();
+        (0..n).any(|i| {
+            (i + 2..n).any(|j| {
+                !adjacent(i, j, n)
+                    && segments_intersect(pts[i], pts[(i + 1) % n], pts[j], pts[(j + 1) % n])
+            })
+        })
+    }
+
+    fn xorshift(state: &mut u64) -> f32 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        (*state >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    #[test]
+    fn the_grid_check_agrees_with_the_quadratic_one() {
+        let mut state = 0x2545_f491_4f6c_dd1d;
+        let (mut simple, mut crossing) = (0, 0);
+        for case in 0..3000 {
+            let n = 5 + case % 40;
+            // Star-shaped around the centre (simple) with some vertices jittered, snapped
+            // to a coarse grid so that touching and collinear edges occur too.
+            let jitter = (case % 3) as f32 * 0.6;
+            let pts: Vec<Vec2> = (0..n)
+                .map(|k| {
+                    let t = k as f32 / n as f32 * std::f32::consts::TAU;
+                    let r = 20.0 + 20.0 * xorshift(&mut state);
+                    let p = Vec2::new(t.cos(), t.sin()) * r
+                        + (Vec2::new(xorshift(&mut state), xorshift(&mut state)) - 0.5)
+                            * 60.0
+                            * jitter;
+                    (p / 4.0).round() * 4.0
+                })
+                .collect();
+            if pts.windows(2).any(|w| w[0] == w[1]) || pts[0] == pts[n - 1] {
+                continue;
+            }
+            let want = crosses_brute(&pts);
+            let got = check_edges_apart(&pts).is_err();
+            assert_eq!(got, want, "{pts:?}");
+            if want {
+                crossing += 1;
+            } else {
+                simple += 1;
+            }
+        }
+        assert!(
+            simple > 300 && crossing > 300,
+            "{simple} simple, {crossing} crossing"
+        );
+    }
+
+    #[test]
+    fn large_polygons_are_checked_and_crowded_ones_refused() {
+        // A height profile of 65,532 samples closed below: accepted.
+        let mut pts: Vec<Vec2> = (0..65_532)
+            .map(|i| {
+                let x = i as f32 * 0.25;
+                Vec2::new(
+                    x,
+                    300.0 + 80.0 * (x / 200.0).sin() + 30.0 * (x / 37.0).sin(),
+                )
+            })
+            .collect();
+        let right = pts[pts.len() - 1].x;
+        pts.extend([Vec2::new(right, 0.0), Vec2::new(0.0, 0.0)]);
+        pts.reverse();
+        check_simple_polygon(&pts).unwrap();
+        // The same with one sample pulled below the floor: found.
+        let mut bad = pts.clone();
+        bad[30_000].y = -5.0;
+        let e = check_simple_polygon(&bad).unwrap_err();
+        assert!(e.contains("crosses"), "{e}");
+        // A star of 32,768 long spikes: every edge passes near the centre.
+        let star: Vec<Vec2> = (0..65_536)
+            .map(|k| {
+                let t = k as f32 / 65_536.0 * std::f32::consts::TAU;
+                let r = if k % 2 == 0 { 1000.0 } else { 1.0 };
+                Vec2::new(t.cos(), t.sin()) * r
+            })
+            .collect();
+        let e = check_simple_polygon(&star).unwrap_err();
+        assert!(e.contains("too costly"), "{e}");
+    }
 }
