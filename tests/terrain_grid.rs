@@ -6,7 +6,7 @@ mod common;
 use common::Rng;
 use craterfield::det::math::{Dual, Num, V2};
 use craterfield::field2d::{
-    CellState, Event, MaterialSource, Sample, Sdf, Terrain, TerrainOptions,
+    CellState, Event, MaterialSource, Sample, Sdf, Terrain, TerrainError, TerrainOptions,
 };
 use glam::Vec2;
 use proptest::prelude::*;
@@ -58,6 +58,7 @@ fn opts(cap: usize, res: u32) -> TerrainOptions {
         cell_size: 32.0,
         band: 16.0,
         cell_cap: cap,
+        max_cell_events: cap.max(1 << 16),
         brick_resolution: res,
         max_event_radius: 128.0,
         max_rim: 16.0,
@@ -299,6 +300,62 @@ fn ten_thousand_explosions_keep_query_cost_bounded() {
         assert!((d - exact).abs() <= bound, "at {p}: {d} vs {exact}");
         if !uses_brick(&t, p) {
             assert_eq!(d.to_bits(), exact.to_bits(), "at {p}");
+        }
+    }
+}
+
+/// Events that cannot be baked yet (growing ones, ones that start later, and every event
+/// queued behind them) fill a cell's list only up to `max_cell_events`: the next is
+/// refused and changes nothing, the cells stay as cheap as the limit, and once the
+/// blockers settle the cell bakes and accepts events again.
+#[test]
+fn unbakeable_events_cannot_grow_a_cell_past_its_limit() {
+    let o = TerrainOptions {
+        cell_cap: 8,
+        max_cell_events: 40,
+        ..TerrainOptions::default()
+    };
+    let at = Vec2::new(10.0, 10.0);
+    for blocker in ["growing", "future", "queued behind growing"] {
+        let mut t = Terrain::new(hills(), Vec2::splat(-1000.0), Vec2::splat(1000.0), o).unwrap();
+        let mut accepted = 0;
+        let mut refused = None;
+        for k in 0..200u32 {
+            let e = Event::carve(at + Vec2::new((k % 7) as f32, (k % 5) as f32), 6.0).unwrap();
+            let e = match blocker {
+                "growing" => e.with_growth(65_535),
+                "future" => e.at_tick(1_000_000),
+                _ if k == 0 => e.with_growth(100),
+                _ => e,
+            };
+            let before = (t.events().len(), t.distance(at).to_bits(), t.stats());
+            match t.apply(e) {
+                Ok(()) => accepted += 1,
+                Err(err) => {
+                    assert!(
+                        matches!(err, TerrainError::CellFull { max: 40, .. }),
+                        "{err}"
+                    );
+                    assert_eq!(
+                        (t.events().len(), t.distance(at).to_bits(), t.stats()),
+                        before
+                    );
+                    refused = Some(err);
+                }
+            }
+        }
+        assert!(refused.is_some(), "{blocker}: nothing refused");
+        assert_eq!(accepted, 40, "{blocker}");
+        assert!(
+            t.stats().max_cell_events <= 40,
+            "{blocker}: {:?}",
+            t.stats()
+        );
+        if blocker == "queued behind growing" {
+            // Once the growing event settles the list bakes and takes events again.
+            t.set_tick(200);
+            assert!(t.stats().max_cell_events <= o.cell_cap, "{:?}", t.stats());
+            t.apply(Event::carve(at, 6.0).unwrap()).unwrap();
         }
     }
 }

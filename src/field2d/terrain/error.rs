@@ -78,6 +78,17 @@ pub enum TerrainError {
         /// The number of materials.
         count: u16,
     },
+    /// A cell the event reaches already holds `max_cell_events` events that cannot be
+    /// baked yet (a growing or not-yet-started event is among them).
+    #[error(
+        "the explosion-grid cell around {at} already holds {max} events waiting for growing events to settle (max_cell_events)"
+    )]
+    CellFull {
+        /// The centre of the full cell, world units.
+        at: glam::Vec2,
+        /// The limit.
+        max: usize,
+    },
     /// The terrain already holds `max_events` events.
     #[error("too many events: the terrain already holds max_events = {max}")]
     TooManyEvents {

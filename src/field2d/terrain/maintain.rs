@@ -49,16 +49,32 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// Lists event `idx` in every cell it can reach, then prunes those cells.
+    /// The cells whose lists an event joins.
+    pub(super) fn cells_of(&self, e: &Event) -> Vec<usize> {
+        let band = f64::from(self.options.band);
+        let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
+        let extent = event_extent(e) + band;
+        let reach = fixed_f64(e.radius) + fixed_f64(e.rim) + band;
+        self.grid.cells_touching(center, reach, extent)
+    }
+
+    /// The first cell `e` would join whose list is already `max_cell_events` long.
+    pub(super) fn full_cell_for(&self, e: &Event) -> Option<usize> {
+        let max = self.options.max_cell_events;
+        self.cells_of(e).into_iter().find(|&cell| {
+            self.grid
+                .cells
+                .get(cell)
+                .is_some_and(|c| c.events.len() >= max)
+        })
+    }
+
     pub(super) fn insert(&mut self, idx: u32) {
         let Some(e) = self.events.get(idx as usize).copied() else {
             return;
         };
-        let band = f64::from(self.options.band);
-        let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
-        let extent = event_extent(&e) + band;
-        let reach = fixed_f64(e.radius) + fixed_f64(e.rim) + band;
         let settled_at = e.tick.saturating_add(u32::from(e.grow_ticks));
-        for cell in self.grid.cells_touching(center, reach, extent) {
+        for cell in self.cells_of(&e) {
             self.record_cell(cell);
             let revision = self.new_revision();
             if let Some(c) = self.grid.cells.get_mut(cell) {

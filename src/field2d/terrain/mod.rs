@@ -212,6 +212,17 @@ impl<F: Sdf> Terrain<F> {
                 count: o.material_count,
             });
         }
+        if let Some(cell) = self.full_cell_for(e) {
+            let r = self.grid.cell_rect(cell);
+            let at = glam::Vec2::new(
+                ((r.min[0] + r.max[0]) * 0.5) as f32,
+                ((r.min[1] + r.max[1]) * 0.5) as f32,
+            );
+            return Err(TerrainError::CellFull {
+                at,
+                max: o.max_cell_events,
+            });
+        }
         Ok(())
     }
 

@@ -17,6 +17,13 @@ pub struct TerrainOptions {
     pub band: f32,
     /// Longest event list a cell keeps before baking a brick.
     pub cell_cap: usize,
+    /// Longest event list a cell may hold at all. Lists past `cell_cap` bake their settled
+    /// prefix, but a growing or not-yet-started event stops the prefix, and every event
+    /// after it waits too; an event that would make a list longer than this is refused
+    /// ([`TerrainError::CellFull`]), so one cell's queries stay bounded (100,000 growing
+    /// events in one cell made a distance query take 254 us for 65,536 ticks).
+    #[serde(default = "default_max_cell_events")]
+    pub max_cell_events: usize,
     /// Brick lattice intervals per cell side.
     pub brick_resolution: u32,
     /// Largest accepted event radius, world units.
@@ -35,6 +42,7 @@ impl Default for TerrainOptions {
             cell_size: 64.0,
             band: 32.0,
             cell_cap: 48,
+            max_cell_events: default_max_cell_events(),
             brick_resolution: 32,
             max_event_radius: 512.0,
             max_rim: 64.0,
@@ -42,6 +50,10 @@ impl Default for TerrainOptions {
             material_count: 256,
         }
     }
+}
+
+fn default_max_cell_events() -> usize {
+    256
 }
 
 fn check_positive(name: &'static str, value: f32, limit: f32) -> Result<(), TerrainError> {
@@ -93,6 +105,13 @@ impl TerrainOptions {
                 name: "cell_cap",
                 value: "0".into(),
                 reason: "must be at least 1",
+            });
+        }
+        if self.max_cell_events < self.cell_cap {
+            return Err(TerrainError::BadOption {
+                name: "max_cell_events",
+                value: self.max_cell_events.to_string(),
+                reason: "must be at least cell_cap",
             });
         }
         if self.max_events == 0 || self.max_events > u32::MAX as usize {
