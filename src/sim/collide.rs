@@ -4,12 +4,20 @@
 //!
 //! Pairs are found and resolved in a fixed order (ascending index pairs), so the result
 //! does not depend on hashing or threads.
+//!
+//! Bodies piled at one point share a cell, where the pairs are quadratic: the candidates
+//! visited in one tick are bounded by a budget ([`PAIR_TESTS_PER_BODY`] per body allowed in
+//! the world). Past it the later bodies (in index order) get no body contacts that tick:
+//! deterministic, and a pile of projectiles costs what the budget allows, not 34 ms a tick.
 
 use glam::Vec2;
 
 use crate::det::math::{clamp, max, min};
 
 use super::body::Body;
+
+/// Candidate pair tests per tick, per body the settings allow (`max_bodies`).
+pub const PAIR_TESTS_PER_BODY: u64 = 32;
 
 /// Fraction of the overlap removed per tick.
 const PUSH_APART: f32 = 0.5;
@@ -46,12 +54,20 @@ fn key(cx: i32, cy: i32) -> u64 {
 }
 
 impl Broadphase {
-    /// Every overlapping pair, in ascending `(a, b)` order, into `out`.
-    pub(crate) fn overlaps(&mut self, bodies: &[Body], out: &mut Vec<Overlap>) {
+    /// Every overlapping pair, in ascending `(a, b)` order, into `out`, testing at most
+    /// `budget` candidate pairs (bodies are taken in index order; those left when it runs
+    /// out get none). Returns whether the budget ran out.
+    pub(crate) fn overlaps(
+        &mut self,
+        bodies: &[Body],
+        out: &mut Vec<Overlap>,
+        budget: u64,
+    ) -> bool {
         out.clear();
+        let mut tests = 0u64;
         let reach = bodies.iter().map(Body::bounding_radius).fold(0.0, max);
         if bodies.len() < 2 || reach <= 0.0 {
-            return;
+            return false;
         }
         let size = 2.0 * reach;
         let inv = 1.0 / size;
@@ -73,6 +89,12 @@ impl Broadphase {
                     if k > hi {
                         break;
                     }
+                    // Every key visited is work, the ones skipped as `j <= i` too.
+                    tests += 1;
+                    if tests > budget {
+                        out.sort_unstable_by_key(|o| (o.a, o.b));
+                        return true;
+                    }
                     let j = j as usize;
                     if j <= i || !near(body, &bodies[j]) {
                         continue;
@@ -84,6 +106,7 @@ impl Broadphase {
             }
         }
         out.sort_unstable_by_key(|o| (o.a, o.b));
+        false
     }
 }
 
@@ -194,6 +217,36 @@ pub(crate) fn resolve(a: &mut Body, b: &mut Body, o: &Overlap) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::body::BodyKind;
+
+    /// A pile of bodies at one point visits at most the budget's candidates, keeps the
+    /// ascending order and the pairs of the first bodies; spread bodies are never cut.
+    #[test]
+    fn a_pile_costs_the_budget_and_no_more() {
+        let pile: Vec<Body> = (0..2000)
+            .map(|i| Body::new(i, BodyKind::Debris, Vec2::new(5.0, 5.0), 2.0))
+            .collect();
+        let mut bp = Broadphase::default();
+        let mut all = Vec::new();
+        assert!(!bp.overlaps(&pile[..100], &mut all, u64::MAX));
+        assert_eq!(all.len(), 100 * 99 / 2);
+        let mut cut = Vec::new();
+        assert!(bp.overlaps(&pile, &mut cut, 50_000));
+        assert!(cut.len() <= 50_000 && !cut.is_empty());
+        assert!(cut.windows(2).all(|w| (w[0].a, w[0].b) < (w[1].a, w[1].b)));
+        assert_eq!((cut[0].a, cut[0].b), (0, 1));
+        // The same budget, twice: the same pairs (no hashing, no threads).
+        let mut again = Vec::new();
+        bp.overlaps(&pile, &mut again, 50_000);
+        assert_eq!(cut, again);
+        // Bodies spread out on a line touch only their neighbours: far below any budget.
+        let line: Vec<Body> = (0..2000)
+            .map(|i| Body::new(i, BodyKind::Debris, Vec2::new(i as f32 * 3.9, 0.0), 2.0))
+            .collect();
+        let mut pairs = Vec::new();
+        assert!(!bp.overlaps(&line, &mut pairs, 2000 * PAIR_TESTS_PER_BODY));
+        assert_eq!(pairs.len(), 1999);
+    }
 
     #[test]
     fn closest_points_of_segments() {

@@ -77,7 +77,8 @@ pub struct Settings {
     pub shell: WeaponSettings,
     /// Weapon 1: dirt (fills).
     pub dirt: WeaponSettings,
-    /// Most bodies alive at once; shots beyond it are dropped.
+    /// Most bodies alive at once (at most 65,536); shots beyond it are dropped. It also
+    /// bounds one tick's body-body work: 32 candidate pair tests per body allowed.
     pub max_bodies: u32,
     /// How many ticks back a snapshot can be restored (the terrain's undo journal keeps
     /// this much history).
@@ -265,8 +266,8 @@ impl Settings {
         check(
             "max_bodies",
             self.max_bodies.into(),
-            (1..=1_000_000).contains(&self.max_bodies),
-            "must be 1..=1000000",
+            (1..=65_536).contains(&self.max_bodies),
+            "must be 1..=65536",
         )?;
         check(
             "rollback_ticks",

@@ -637,7 +637,8 @@ impl World {
     /// Body-body overlaps; a projectile touching a vehicle or debris explodes.
     fn bodies_collide(&mut self, blasts: &mut Vec<Blast>) {
         let s = &mut self.scratch;
-        s.broadphase.overlaps(&self.bodies, &mut s.overlaps);
+        let budget = u64::from(self.settings.max_bodies) * collide::PAIR_TESTS_PER_BODY;
+        s.broadphase.overlaps(&self.bodies, &mut s.overlaps, budget);
         for o in &s.overlaps {
             let (lo, hi) = self.bodies.split_at_mut(o.b);
             let (a, b) = (&mut lo[o.a], &mut hi[0]);
