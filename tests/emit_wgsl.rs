@@ -513,3 +513,109 @@ fn graphs_with_the_same_content_share_a_fingerprint() {
         TerrainEmitter::new(&every_variant_graph()).fingerprint()
     );
 }
+
+/// A chain of `depth` named nodes, each the union of `fanout` copies of the next one at
+/// moved points (each copy a call of the next node's context): legal, shared in the
+/// text, but `fanout^depth` copies once a GPU compiler inlines the calls.
+fn dag_level(fanout: usize, depth: usize) -> craterfield::field2d::Level {
+    let mut nodes = String::new();
+    for i in 0..depth {
+        let copies: Vec<String> = (0..fanout)
+            .map(|k| {
+                format!(
+                    "Translate(offset: ({}.0, 0.0), node: Ref(\"n{}\"))",
+                    k,
+                    i + 1
+                )
+            })
+            .collect();
+        nodes += &format!("\"n{i}\": Union([{}]),\n", copies.join(", "));
+    }
+    nodes += &format!("\"n{depth}\": Circle(center: (500.0, 500.0), radius: 20.0),\n");
+    let text = format!(
+        "Level(name: \"dag\", bounds: (min: (0.0, 0.0), max: (1024.0, 1024.0)),\n\
+         materials: [(name: \"soil\", color: (1, 2, 3))], root: Ref(\"n0\"), nodes: {{\n{nodes}}})"
+    );
+    craterfield::field2d::Level::from_ron(&text).unwrap()
+}
+
+/// What the emitter hands a driver is bounded: DAG levels of several fan-outs and depths
+/// that compile (their evaluation cost is within the level limits) are refused once their
+/// inlined size passes the budget, and so is a union too wide for the text budget; the
+/// ones within it emit valid WGSL with an inlined size that matches the copies.
+#[test]
+fn shaders_past_the_budget_are_refused_before_a_driver_sees_them() {
+    use craterfield::emit::{EmitError, ShaderBudget};
+    let budget = ShaderBudget::default();
+    for (fanout, depth, fits) in [
+        (2, 6, true),
+        (3, 4, true),
+        (2, 15, false),
+        (3, 9, false),
+        (8, 5, false),
+    ] {
+        let level = dag_level(fanout, depth);
+        let emitter = TerrainEmitter::new(level.graph());
+        let plan = emitter.plan(None, 32.0);
+        let inlined = emitter.inlined_statements(&plan);
+        let copies = (fanout as u64).pow(depth as u32);
+        assert!(inlined >= copies, "{fanout}^{depth}: {inlined} statements");
+        match emitter.emit_within(&plan, &budget) {
+            Ok(text) => {
+                assert!(fits, "{fanout}^{depth} should be refused");
+                validate(&format!("dag {fanout}^{depth}"), &text);
+            }
+            Err(EmitError::TooLarge { what, .. }) => {
+                assert!(!fits, "{fanout}^{depth} should fit");
+                assert_eq!(what, "inlined statements");
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
+    // 15,000 children of one union: within every level limit, 1.5 MB of text.
+    let children: Vec<String> = (0..15_000)
+        .map(|i| {
+            format!(
+                "Circle(center: ({}.0, {}.0), radius: 3.0)",
+                i % 1000,
+                i / 1000 * 60
+            )
+        })
+        .collect();
+    let text = format!(
+        "Level(name: \"wide\", bounds: (min: (0.0, 0.0), max: (1024.0, 1024.0)),\n\
+         materials: [(name: \"soil\", color: (1, 2, 3))], root: Union([{}]))",
+        children.join(", ")
+    );
+    let level = craterfield::field2d::Level::from_ron(&text).unwrap();
+    let emitter = TerrainEmitter::new(level.graph());
+    let e = emitter
+        .emit_within(&emitter.plan(None, 32.0), &budget)
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            EmitError::TooLarge {
+                what: "text bytes",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // Every shipped level is far inside the budget.
+    let prospero = prospero_graph().map(|g| ("prospero".to_string(), g));
+    let levels = example_levels()
+        .into_iter()
+        .map(|(name, graph, _)| (name, graph));
+    for (name, graph) in levels.chain(prospero) {
+        let emitter = TerrainEmitter::new(&graph);
+        let plan = emitter.plan(None, 32.0);
+        eprintln!(
+            "{name}: {} inlined statements, {} bytes",
+            emitter.inlined_statements(&plan),
+            emitter.emit(&plan).len()
+        );
+
+        emitter.emit_within(&plan, &budget).unwrap();
+    }
+}

@@ -448,6 +448,26 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
         Err(GpuError::TargetFormat(_)) => {}
         other => return Err(format!("a depth target gave {:?}", other.map(|_| ())).into()),
     }
+    // A level whose shader would inline 3^9 copies of a shared node: refused before the
+    // driver compiles anything (Mesa's compiler ran out of memory on such a module).
+    let mut nodes = String::new();
+    for i in 0..9 {
+        let next = i + 1;
+        nodes += &format!(
+            "\"n{i}\": Union([Ref(\"n{next}\"), Translate(offset: (1.0, 0.0), node: Ref(\"n{next}\")), Translate(offset: (0.0, 1.0), node: Ref(\"n{next}\"))]),\n"
+        );
+    }
+    let dag = Level::from_ron(&format!(
+        "Level(name: \"dag\", bounds: (min: (0.0, 0.0), max: (1024.0, 1024.0)), \
+         materials: [(name: \"soil\", color: (1, 2, 3))], root: Ref(\"n0\"), \
+         nodes: {{ {nodes} \"n9\": Circle(center: (500.0, 500.0), radius: 20.0) }})"
+    ))
+    .map_err(|e| e.to_string())?;
+    let dag_terrain = dag.terrain().map_err(|e| e.to_string())?;
+    match r.prepare(&dag_terrain, &pal, &camera(Vec2::splat(512.0), 1.0, 64, 64)) {
+        Err(GpuError::ShaderTooLarge(why)) if why.contains("inlined statements") => {}
+        other => return Err(format!("a 3^9 DAG level gave {:?}", other.map(|_| ())).into()),
+    }
     // Targets past the device's limits, of several aspect ratios: an error, never wgpu's
     // validation panic. The readback buffer of the widest one is past `max_buffer_size`
     // while each side is within `max_texture_dimension_2d`.

@@ -47,6 +47,38 @@ enum FoldMaterial {
     First,
 }
 
+/// Statements a GPU compiler sees once it has inlined every call of the module rooted at
+/// the graph's root: each context's own nodes plus, per call site of a context, that
+/// context's inlined size. The text shares a node used at several moved points (each a
+/// separate call), but a driver that inlines calls copies it once per call site, so a DAG
+/// whose shared nodes are called from several places grows exponentially there.
+pub(crate) fn inlined_statements(graph: &Graph, fates: &[Fate]) -> u64 {
+    let module = Module {
+        graph,
+        fates,
+        items: BTreeMap::new(),
+        context_material: BTreeMap::new(),
+    };
+    let mut inlined: BTreeMap<u32, u64> = BTreeMap::new();
+    // Ascending: every context only calls contexts of lower ids (see `emit_module`).
+    for root in context_roots(graph, fates) {
+        let mut total = 0u64;
+        for id in module.members(root) {
+            total = total.saturating_add(1);
+            let op = &graph.ops[id as usize];
+            if fates[id as usize] == Fate::Far {
+                continue;
+            }
+            if let Some(child) = domain_child(op) {
+                let callee = inlined.get(&child.0).copied().unwrap_or(1);
+                total = total.saturating_add(callee);
+            }
+        }
+        inlined.insert(root, total);
+    }
+    inlined.get(&graph.root.0).copied().unwrap_or(1)
+}
+
 /// The whole module for `graph` under `fates`.
 pub(crate) fn emit_module(graph: &Graph, fates: &[Fate], key: u64, fingerprint: u64) -> String {
     let mut module = Module {

@@ -22,7 +22,7 @@ pub mod terrain2d;
 pub mod wgsl;
 
 pub use cull::{CullPlan, CulledChild, Fate};
-pub use terrain2d::TerrainEmitter;
+pub use terrain2d::{EmitError, ShaderBudget, TerrainEmitter};
 
 /// Stable 64-bit fingerprint of a compiled level graph's content (see
 /// [`TerrainEmitter::fingerprint`]), without building an emitter.

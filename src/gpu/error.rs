@@ -22,6 +22,10 @@ pub enum GpuError {
         /// The device's limit.
         limit: u64,
     },
+    /// An emitted shader is past the budget a GPU compiler is handed (the emitter's
+    /// message says which part and by how much).
+    #[error("{0}")]
+    ShaderTooLarge(String),
     /// The device lacks a texture format capability the renderer needs.
     #[error("the device cannot {0}")]
     Unsupported(String),

@@ -17,7 +17,7 @@ use crate::det::math::{clamp, max, min};
 use super::body::Body;
 
 /// Candidate pair tests per tick, per body the settings allow (`max_bodies`).
-pub const PAIR_TESTS_PER_BODY: u64 = 32;
+pub(crate) const PAIR_TESTS_PER_BODY: u64 = 32;
 
 /// Fraction of the overlap removed per tick.
 const PUSH_APART: f32 = 0.5;

@@ -1,6 +1,6 @@
 //! [`TerrainRenderer`]: pipelines, textures and the three passes.
 
-use crate::emit::terrain2d::TerrainEmitter;
+use crate::emit::terrain2d::{ShaderBudget, TerrainEmitter};
 use crate::field2d::aabb::Aabb;
 use crate::field2d::graph::Graph;
 use crate::field2d::sdf::Sdf;
@@ -347,7 +347,9 @@ impl TerrainRenderer {
             self.field_pipelines.clear();
         }
         let (_, hit) = self.field_pipelines.get_or_try_insert_with(plan.key, || {
-            let base = emitter.emit(&plan);
+            let base = emitter
+                .emit_within(&plan, &ShaderBudget::default())
+                .map_err(|e| GpuError::ShaderTooLarge(e.to_string()))?;
             let sdf = fullscreen_pipeline(
                 device,
                 "craterfield sdf pass",
