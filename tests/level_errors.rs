@@ -335,9 +335,9 @@ fn parameters_that_make_queries_meaningless_are_refused() {
         ),
         (
             "Union([Circle(radius: 5.0), Translate(offset: (1.0, 0.0), node: Mul(X, Const(1e8)))])",
-            "root.Union[1].Translate.node.Mul",
+            "root",
         ),
-        ("Mul(X, Const(1e30))", "root.Mul"),
+        ("Mul(X, Const(1e30))", "root"),
     ] {
         let msg = error_of(&level_with(root, ""));
         assert_mentions(&msg, &[path, "Lipschitz bound", "past the limit"]);

@@ -827,3 +827,62 @@ fn bricks_are_the_same_bits_on_every_backend_and_on_the_point_path() {
         assert!(bricks(&t) == expected, "{backend} baked other bits");
     }
 }
+
+/// Cells whose specialized tapes come out alike share one copy: a long expression with no
+/// branch to drop costs one tape however many cells are queried, where each cell kept its
+/// own (590 KB a cell for such a level). A level with branches keeps its distinct tapes,
+/// within the budget, and every result is the same bits as with no specialization.
+#[test]
+fn cell_tapes_are_shared_and_bounded() {
+    use craterfield::field2d::Level;
+    use craterfield::field2d::terrain::MAX_CELL_TAPE_BYTES;
+    let terms: Vec<String> = (0..3000)
+        .map(|i| format!("Mul(X, Const({}.0))", i % 7 + 1))
+        .collect();
+    // A balanced tree of sums (a chain would pass the parser's nesting limit).
+    let mut sum = terms;
+    while sum.len() > 1 {
+        sum = sum
+            .chunks(2)
+            .map(|c| match c {
+                [a, b] => format!("Add({a}, {b})"),
+                [a] => a.clone(),
+                _ => unreachable!(),
+            })
+            .collect();
+    }
+    let sum = &sum[0];
+    // Keep the distance scale sane: x times a large constant, minus y.
+    let root = format!("Sub(Y, Mul(Const(0.0001), {sum}))");
+    let text = format!(
+        "Level(name: \"sum\", bounds: (min: (0.0, 0.0), max: (2048.0, 1024.0)),\n\
+         materials: [(name: \"soil\", color: (1, 2, 3))], root: {root})"
+    );
+    let level = Level::from_ron(&text).unwrap();
+    let terrain = level.terrain().unwrap();
+    let mut rng = Rng(5);
+    for _ in 0..2000 {
+        let p = Vec2::new(rng.range(0.0, 2048.0), rng.range(0.0, 1024.0));
+        terrain.distance(p);
+    }
+    // 512 cells queried, each tape set about 300 KB alone: shared, they take a fraction
+    // of one.
+    let bytes = terrain.cell_tape_bytes();
+    assert!(bytes < 1 << 20, "{bytes} bytes of cell tapes");
+
+    let level = Level::default_level();
+    let mut plain = level.terrain().unwrap();
+    plain.set_specialize(false);
+    let terrain = level.terrain().unwrap();
+    let b = level.bounds();
+    for _ in 0..4000 {
+        let p = Vec2::new(rng.range(b.min.x, b.max.x), rng.range(b.min.y, b.max.y));
+        assert_eq!(
+            terrain.distance(p).to_bits(),
+            plain.distance(p).to_bits(),
+            "{p}"
+        );
+    }
+    let bytes = terrain.cell_tape_bytes();
+    assert!(bytes > 0 && bytes <= MAX_CELL_TAPE_BYTES, "{bytes}");
+}

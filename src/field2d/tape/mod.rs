@@ -401,6 +401,20 @@ pub struct Tape {
 }
 
 impl Tape {
+    /// Bytes of its instructions and parameters.
+    pub fn bytes(&self) -> usize {
+        self.instrs.len() * std::mem::size_of::<Instr>() + self.params.len() * 4
+    }
+
+    /// Whether `other` computes the same thing the same way (instruction for instruction).
+    pub(crate) fn same_as(&self, other: &Tape) -> bool {
+        self.instrs == other.instrs
+            && self.params == other.params
+            && self.registers == other.registers
+            && self.value == other.value
+            && self.material == other.material
+    }
+
     /// Number of instructions.
     pub fn len(&self) -> usize {
         self.instrs.len()

@@ -6,13 +6,23 @@
 //! and the cell's rectangle, both fixed for the terrain's life, so once built they never
 //! go stale: events, baking and tick changes alter what is applied after the base, never
 //! the base itself. Points outside the grid use the whole program.
+//!
+//! Memory is bounded by [`MAX_CELL_TAPE_BYTES`]: a cell whose tapes come out the same as
+//! another's (or as the whole program's) shares them, and once the distinct tapes reach
+//! the budget further cells use the whole program. Either way a cell's results are the
+//! same bits, so what is shared or specialized never depends on the order of queries in a
+//! way anyone can see but the time taken.
 
-use std::sync::{Arc, OnceLock};
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use glam::Vec2;
 
 use crate::field2d::tape::{Outputs, Program, Tape};
 use crate::field2d::terrain::grid::Grid;
+use crate::field2d::terrain::limits::MAX_CELL_TAPE_BYTES;
 
 /// The tapes of one region.
 #[derive(Debug)]
@@ -30,6 +40,31 @@ pub(crate) struct CellTape {
 }
 
 impl CellTape {
+    fn bytes(&self) -> usize {
+        self.value.bytes() + self.material.bytes()
+    }
+
+    fn same_as(&self, other: &CellTape) -> bool {
+        self.value.same_as(&other.value)
+            && self.material.same_as(&other.material)
+            && self.clamped.map(f32::to_bits) == other.clamped.map(f32::to_bits)
+            && (self.range.0.to_bits(), self.range.1.to_bits())
+                == (other.range.0.to_bits(), other.range.1.to_bits())
+    }
+
+    /// A hash of what [`CellTape::same_as`] compares.
+    fn key(&self) -> u64 {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for t in [&self.value, &self.material] {
+            t.instrs.hash(&mut h);
+            t.params.hash(&mut h);
+            (t.registers, t.value, t.material).hash(&mut h);
+        }
+        self.clamped.map(f32::to_bits).hash(&mut h);
+        (self.range.0.to_bits(), self.range.1.to_bits()).hash(&mut h);
+        h.finish()
+    }
+
     fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32) -> CellTape {
         let mut range = (-band, band);
         let (program, clamped) = match region {
@@ -62,12 +97,41 @@ impl CellTape {
     }
 }
 
+/// The distinct tapes built so far, by content, and their bytes.
+#[derive(Debug, Default)]
+struct Interned {
+    table: Mutex<HashMap<u64, Vec<Arc<CellTape>>>>,
+    bytes: AtomicUsize,
+}
+
+impl Interned {
+    /// The stored tape equal to `tape`, or `tape` stored; `None` when it is new and the
+    /// budget is spent.
+    fn share(&self, tape: CellTape) -> Option<Arc<CellTape>> {
+        let mut table = self.table.lock().unwrap_or_else(|e| e.into_inner());
+        let bucket = table.entry(tape.key()).or_default();
+        if let Some(same) = bucket.iter().find(|t| t.same_as(&tape)) {
+            return Some(same.clone());
+        }
+        let bytes = tape.bytes();
+        if self.bytes.load(Ordering::Relaxed) + bytes > MAX_CELL_TAPE_BYTES {
+            return None;
+        }
+        self.bytes.fetch_add(bytes, Ordering::Relaxed);
+        let tape = Arc::new(tape);
+        bucket.push(tape.clone());
+        Some(tape)
+    }
+}
+
 /// Every cell's plan, built lazily (thread-safe).
 #[derive(Clone, Debug)]
 pub(crate) struct CellTapes {
     program: Arc<Program>,
     cells: Vec<OnceLock<Arc<CellTape>>>,
     outside: OnceLock<Arc<CellTape>>,
+    /// Shared by clones: equal tapes are interchangeable whichever terrain built them.
+    interned: Arc<Interned>,
     specialize: bool,
     band: f32,
 }
@@ -78,6 +142,7 @@ impl CellTapes {
             program,
             cells: (0..cells).map(|_| OnceLock::new()).collect(),
             outside: OnceLock::new(),
+            interned: Arc::default(),
             specialize: true,
             band,
         }
@@ -94,9 +159,19 @@ impl CellTapes {
         }
     }
 
+    /// The whole program's tapes (outside the grid, and past the budget).
+    fn whole(&self) -> &Arc<CellTape> {
+        self.outside
+            .get_or_init(|| Arc::new(CellTape::new(&self.program, None, self.band)))
+    }
+
+    /// Bytes of the distinct specialized tapes kept.
+    pub(super) fn bytes(&self) -> usize {
+        self.interned.bytes.load(Ordering::Relaxed)
+    }
+
     /// The plan of `cell` (`None`: outside the grid).
     pub(super) fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellTape {
-        let whole = || Arc::new(CellTape::new(&self.program, None, self.band));
         match cell.and_then(|c| self.cells.get(c).map(|slot| (c, slot))) {
             Some((c, slot)) if self.specialize => slot.get_or_init(|| {
                 // Padded: the f32 cell lookup may place a point a rounding error outside
@@ -106,9 +181,17 @@ impl CellTapes {
                 let pad = s / 1024.0 + (min.abs().max_element() + s) / 1_048_576.0;
                 let max = min + Vec2::splat(s + pad);
                 let min = min - Vec2::splat(pad);
-                Arc::new(CellTape::new(&self.program, Some((min, max)), self.band))
+                let whole = self.whole();
+                if self.bytes() >= MAX_CELL_TAPE_BYTES {
+                    return whole.clone();
+                }
+                let tape = CellTape::new(&self.program, Some((min, max)), self.band);
+                if tape.same_as(whole) {
+                    return whole.clone();
+                }
+                self.interned.share(tape).unwrap_or_else(|| whole.clone())
             }),
-            _ => self.outside.get_or_init(whole),
+            _ => self.whole(),
         }
     }
 }

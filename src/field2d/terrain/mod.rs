@@ -96,7 +96,7 @@ pub use grid::{
 };
 use journal::Entry;
 pub use journal::{RollbackError, TerrainMark};
-pub use limits::{MAX_BRICK_BYTES, MAX_COORD};
+pub use limits::{MAX_BRICK_BYTES, MAX_CELL_TAPE_BYTES, MAX_COORD};
 pub use options::TerrainOptions;
 pub use proof::{CellBounds, EventDiscs, RectSign};
 
@@ -296,6 +296,12 @@ impl<F: Sdf> Terrain<F> {
     /// The documented distance error bound of brick cells, `L * h / sqrt(2)`.
     pub fn brick_error_bound(&self) -> f32 {
         self.lipschitz() * self.grid.brick_spacing() * std::f32::consts::FRAC_1_SQRT_2
+    }
+
+    /// Bytes of the distinct specialized tapes the cells keep (at most
+    /// [`MAX_CELL_TAPE_BYTES`]; cells that specialize alike count once).
+    pub fn cell_tape_bytes(&self) -> usize {
+        self.cell_tapes.as_ref().map_or(0, CellTapes::bytes)
     }
 
     /// Grid counters.

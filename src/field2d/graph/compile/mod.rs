@@ -37,6 +37,7 @@ impl Graph {
             limits,
         };
         let root = c.node(root, "root", 0)?;
+        c.check_lipschitz("root", c.info[root.0 as usize].lipschitz)?;
         let cost = c.info[root.0 as usize].cost;
         if cost > limits.max_cost {
             return Err(LevelError::Limit {
@@ -172,21 +173,29 @@ impl Compiler<'_> {
                 reason: format!("`{}` nodes cannot be compiled", node.kind()),
             });
         };
-        // The bound every query steps by: NaN or past the limit makes queries meaningless,
-        // whichever parameter (a tiny wavelength or scale, a huge factor) caused it. An
-        // infinite bound is an expression's "unknown": the terrain bounds its cells by
-        // interval arithmetic instead.
-        let lipschitz = info.lipschitz;
+        // A displacement's bound comes from its parameters alone: checked where they are
+        // written. Other nodes are checked once, at the root: an expression's inner terms
+        // may have any slope that a later factor scales down.
+        if matches!(node, Node::DisplaceNoise { .. } | Node::DisplaceWave { .. }) {
+            self.check_lipschitz(&path, info.lipschitz)?;
+        }
+        self.push(op, info, &path)
+    }
+
+    /// The bound every query steps by: NaN or past the limit makes queries meaningless,
+    /// whichever parameter (a tiny wavelength, a huge factor) caused it. An infinite bound
+    /// is an expression's "unknown": the terrain bounds its cells by interval arithmetic.
+    fn check_lipschitz(&self, path: &str, lipschitz: f32) -> Result<(), LevelError> {
         if lipschitz.is_nan() || (lipschitz.is_finite() && lipschitz > self.limits.max_lipschitz) {
             return Err(LevelError::Invalid {
-                path,
+                path: path.into(),
                 reason: format!(
-                    "its Lipschitz bound {:e} is past the limit of {:e}: queries could not step through it (a wavelength or scale too small for its amplitude, or a factor too large)",
-                    info.lipschitz, self.limits.max_lipschitz
+                    "its Lipschitz bound {lipschitz:e} is past the limit of {:e}: queries could not step through it (a wavelength too small for its amplitude, or a factor too large)",
+                    self.limits.max_lipschitz
                 ),
             });
         }
-        self.push(op, info, &path)
+        Ok(())
     }
 
     fn reference(&mut self, name: &str, path: &str, depth: usize) -> Result<NodeId, LevelError> {
