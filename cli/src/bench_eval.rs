@@ -122,7 +122,7 @@ pub(crate) fn eval(o: Options) -> Result<ExitCode, String> {
     }
 
     let path = prospero.unwrap_or_else(|| PathBuf::from("tests/data/prospero.vm"));
-    match craterfield::files::read_text(&path, crate::fidelity_scenes::MAX_VM_BYTES) {
+    match craterfield::files::read_text(&path, craterfield::field2d::import::MAX_VM_BYTES as u64) {
         _ if !wanted("prospero") => {}
         Ok(text) => {
             let parts = (wanted("prospero-brute"), wanted("prospero-specialized"));

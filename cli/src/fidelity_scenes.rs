@@ -22,8 +22,6 @@ use crate::barrage;
 
 /// Band of every scene's terrain, in texels of the coarsest scale (1/32).
 pub(crate) const BAND_TEXELS: f32 = 3.0;
-/// Largest expression (`.vm`) file read, bytes.
-pub(crate) const MAX_VM_BYTES: u64 = 64 * 1024 * 1024;
 /// Divisor of the coarsest scale measured.
 const COARSEST_DIVISOR: f32 = 32.0;
 /// Side of the synthetic scenes, world units and pixels.
@@ -372,7 +370,7 @@ fn corners() -> Result<Scene, String> {
 /// The prospero expression over [-1, 1]^2 at 1024 x 1024: a band and grid scaled to that
 /// world.
 fn prospero_scene(path: &Path) -> Result<Scene, String> {
-    let text = craterfield::files::read_text(path, MAX_VM_BYTES).map_err(|e| e.to_string())?;
+    let text = craterfield::files::read_text(path, craterfield::field2d::import::MAX_VM_BYTES as u64).map_err(|e| e.to_string())?;
     let graph = graph_from_vm(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let camera = Camera::fit(Vec2::splat(-1.0), Vec2::splat(1.0), SIDE as u32);
     let upp = camera.units_per_pixel;
