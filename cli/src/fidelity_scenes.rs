@@ -370,7 +370,9 @@ fn corners() -> Result<Scene, String> {
 /// The prospero expression over [-1, 1]^2 at 1024 x 1024: a band and grid scaled to that
 /// world.
 fn prospero_scene(path: &Path) -> Result<Scene, String> {
-    let text = craterfield::files::read_text(path, craterfield::field2d::import::MAX_VM_BYTES as u64).map_err(|e| e.to_string())?;
+    let text =
+        craterfield::files::read_text(path, craterfield::field2d::import::MAX_VM_BYTES as u64)
+            .map_err(|e| e.to_string())?;
     let graph = graph_from_vm(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let camera = Camera::fit(Vec2::splat(-1.0), Vec2::splat(1.0), SIDE as u32);
     let upp = camera.units_per_pixel;
