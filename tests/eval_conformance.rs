@@ -559,7 +559,7 @@ fn terrain_batches_match_single_points_and_brute_force() {
         }
         t.apply(e).unwrap();
     }
-    t.set_tick(20);
+    t.set_tick(20).unwrap();
     let mut pts: Vec<Vec2> = (0..30_000)
         .map(|_| Vec2::new(r.range(-700.0, 4540.0), r.range(-700.0, 2300.0)))
         .collect();

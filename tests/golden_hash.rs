@@ -51,7 +51,7 @@ fn terrain() -> Terrain<craterfield::field2d::Graph> {
     for e in events() {
         t.apply(e).unwrap();
     }
-    t.set_tick(10_000 / 50 + 4);
+    t.set_tick(10_000 / 50 + 4).unwrap();
     t
 }
 

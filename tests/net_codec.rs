@@ -659,7 +659,7 @@ fn verify_resimulates_and_catches_divergence_and_wrong_levels() {
 fn snapshot_of_a_simulated_terrain_round_trips() {
     let level = Level::default_level();
     let (_, world) = played_match(&level, 600);
-    let snap = TerrainSnapshot::of_terrain(level_hash(&level), world.terrain());
+    let snap = TerrainSnapshot::of_terrain(level_hash(&level), world.terrain()).unwrap();
     let bytes = snap.encode().unwrap();
     assert_eq!(TerrainSnapshot::decode(&bytes).unwrap(), snap);
     eprintln!(
@@ -701,6 +701,44 @@ fn sim_like_events(n: usize, seed: u64) -> Vec<Event> {
             }
         })
         .collect()
+}
+
+/// One message bounds the work it can cause: a batch past `max_batch_events` is refused
+/// when read (before any event is decoded) and when written, and a reader that raises the
+/// limit reads it.
+#[test]
+fn event_batches_are_bounded_on_both_sides() {
+    let limits = DecodeLimits::default();
+    let max = limits.max_batch_events as usize;
+    let fits = sim_like_events(max, 9);
+    let bytes = wire::encode_events(&fits).unwrap();
+    assert_eq!(wire::decode_events(&bytes).unwrap(), fits);
+    let over = sim_like_events(max + 1, 9);
+    let e = wire::encode_events(&over).unwrap_err().to_string();
+    assert!(
+        e.contains("events in a batch") && e.contains(&max.to_string()),
+        "{e}"
+    );
+    let raised = DecodeLimits {
+        max_batch_events: max as u32 + 1,
+        ..limits
+    };
+    let bytes = wire::encode_events_with_limits(&over, &raised).unwrap();
+    let e = kind_of(wire::decode_events(&bytes));
+    assert!(
+        matches!(
+            e.kind,
+            DecodeErrorKind::TooLarge {
+                what: "event count",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(
+        wire::decode_events_with_limits(&bytes, &raised).unwrap(),
+        over
+    );
 }
 
 #[test]
@@ -838,8 +876,9 @@ fn message_corruption_classes() {
         ),
         "{e}"
     );
+    // 4,096 events (the limit) in a few bytes: more than the bytes left can hold.
     let e = kind_of(wire::decode_events(&framed(&[
-        0x80, 0x80, 0x20, 6, 0, 0, 1, 0, 2, 0, 0, 0,
+        0x80, 0x20, 6, 0, 0, 1, 0, 2, 0, 0, 0,
     ])));
     assert!(matches!(e.kind, DecodeErrorKind::Truncated { .. }), "{e}");
     // A bad event: radius 0 in the shape dictionary, and a centre beyond the fixed range.

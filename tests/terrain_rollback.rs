@@ -1,5 +1,6 @@
 //! Rolling a terrain back to a mark and re-applying gives the same bits as never having
-//! rolled back: events, growth, fills, pruning and baked bricks included.
+//! rolled back: events, growth, fills, pruning and baked bricks included; compacting the
+//! event log changes no query, with or without rollbacks.
 
 mod common;
 use common::Rng;
@@ -48,7 +49,7 @@ fn run(t: &mut Terrain<craterfield::field2d::Graph>, steps: &[Step]) {
     for s in steps {
         match *s {
             Step::Event(e) => t.apply(e).unwrap(),
-            Step::Tick(k) => t.set_tick(k),
+            Step::Tick(k) => t.set_tick(k).unwrap(),
         }
     }
 }
@@ -103,7 +104,7 @@ fn rollback_then_replay_matches_a_straight_run() {
                 let k = (rng.next() % marks.len() as u64) as usize;
                 let (at, m) = marks[k];
                 t.rollback(&m).unwrap();
-                assert_eq!(t.events().len() as u32, m.events());
+                assert_eq!(t.events_applied(), m.events());
                 marks.truncate(k + 1);
                 done = at;
             }
@@ -192,8 +193,113 @@ fn region_stamps_change_with_the_field_and_never_repeat() {
     )
     .unwrap();
     assert_eq!(t.region_stamp(p), None);
-    t.set_tick(t.tick() + 10);
+    t.set_tick(t.tick() + 10).unwrap();
     assert!(t.region_stamp(p).is_some());
     // Outside the grid nothing ever changes.
     assert_eq!(t.region_stamp(Vec2::new(-500.0, -500.0)), Some(0));
+}
+
+fn compacting_terrain(max_events: usize) -> Terrain<craterfield::field2d::Graph> {
+    let level = Level::default_level();
+    let b = level.bounds();
+    let mut o = level.terrain_options();
+    o.cell_cap = 6;
+    o.brick_resolution = 8;
+    o.max_events = max_events;
+    let mut t = Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
+    t.enable_rollback();
+    t
+}
+
+/// Every cell's list as the events it names (indices differ once a log is compacted).
+fn lists(t: &Terrain<craterfield::field2d::Graph>) -> Vec<Vec<Event>> {
+    let g = t.grid();
+    (0..g.cell_count())
+        .map(|i| {
+            g.cell(i)
+                .map(|c| c.events().iter().map(|&k| t.events()[k as usize]).collect())
+                .unwrap_or_default()
+        })
+        .collect()
+}
+
+#[test]
+fn compaction_changes_no_query_and_bounds_the_log() {
+    for seed in 0..3u64 {
+        let steps = script(seed ^ 0x5eed, 1500);
+        let mut whole = terrain();
+        let mut compact = compacting_terrain(64);
+        for chunk in steps.chunks(100) {
+            run(&mut whole, chunk);
+            run(&mut compact, chunk);
+            // Keep a short rollback window, as a world does, so the journal lets go.
+            for t in [&mut whole, &mut compact] {
+                let m = t.mark().unwrap();
+                t.forget_before(&m);
+            }
+            assert!(fingerprint(&whole) == fingerprint(&compact), "seed {seed}");
+            assert_eq!(lists(&whole), lists(&compact), "seed {seed}");
+            assert_eq!(whole.stats(), compact.stats(), "seed {seed}");
+            assert_eq!(whole.events_applied(), compact.events_applied());
+        }
+        assert!(whole.history_complete());
+        assert!(!compact.history_complete(), "seed {seed}: it compacted");
+        let kept = compact.events().len();
+        let reachable: usize = lists(&compact).iter().map(Vec::len).sum();
+        assert!(
+            kept < 2 * 64.max(reachable) + 100,
+            "seed {seed}: the log keeps {kept} events ({reachable} listed)"
+        );
+        assert!(kept < whole.events().len() / 2, "seed {seed}: {kept} kept");
+    }
+}
+
+#[test]
+fn compaction_keeps_rollback_exact() {
+    let steps = script(41, 900);
+    let mut straight = compacting_terrain(1 << 20);
+    let mut t = compacting_terrain(32);
+    run(&mut straight, &steps[..300]);
+    run(&mut t, &steps[..300]);
+    let m = t.mark().unwrap();
+    // Events before the mark can go; the ones after it stay while the mark is kept.
+    t.forget_before(&m);
+    let at_mark = (fingerprint(&t), t.stats(), t.events_applied());
+    // Compacts several times past the mark; the journal's pre-images are renumbered.
+    run(&mut t, &steps[300..700]);
+    assert!(!t.history_complete());
+    t.rollback(&m).unwrap();
+    assert!(
+        (fingerprint(&t), t.stats(), t.events_applied()) == at_mark,
+        "the mark's field, counters and event count come back"
+    );
+    run(&mut t, &steps[300..]);
+    run(&mut straight, &steps[300..]);
+    assert!(fingerprint(&t) == fingerprint(&straight));
+    assert_eq!(lists(&t), lists(&straight));
+    assert_eq!(t.stats(), straight.stats());
+}
+
+#[test]
+fn moving_the_tick_back_after_compaction_is_refused_without_change() {
+    let steps = script(5, 600);
+    let mut t = compacting_terrain(16);
+    run(&mut t, &steps);
+    let m = t.mark().unwrap();
+    t.forget_before(&m);
+    t.compact_history();
+    assert!(!t.history_complete());
+    let before = (fingerprint(&t), t.tick(), t.stats());
+    let err = t.set_tick(0).unwrap_err();
+    let msg = err.to_string();
+    assert!(msg.contains("compaction") && msg.contains("mark"), "{msg}");
+    assert!((fingerprint(&t), t.tick(), t.stats()) == before);
+    // Forwards still works, and events still apply.
+    t.set_tick(t.tick() + 1).unwrap();
+    t.apply(
+        Event::carve(Vec2::new(1300.0, 500.0), 20.0)
+            .unwrap()
+            .at_tick(t.tick()),
+    )
+    .unwrap();
 }

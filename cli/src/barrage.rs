@@ -86,7 +86,8 @@ pub(crate) fn fire_seeded(
         stats.rejected += s.rejected;
         progress(n);
     }
-    terrain.set_tick(terrain.tick().saturating_add(SETTLE_TICKS));
+    // Moving the tick forwards never fails (only a rebuild can).
+    let _ = terrain.set_tick(terrain.tick().saturating_add(SETTLE_TICKS));
     stats
 }
 
@@ -102,7 +103,7 @@ pub(crate) fn fire(
     let mut stats = BarrageStats::default();
     for _ in 0..count {
         let tick = terrain.tick().saturating_add(1);
-        terrain.set_tick(tick);
+        let _ = terrain.set_tick(tick); // forwards: never fails
         let Some(event) = next_event(level, terrain, &mut rng, tick) else {
             stats.misses += 1;
             continue;

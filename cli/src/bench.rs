@@ -161,7 +161,7 @@ pub(crate) fn build(level: &Level, count: usize) -> Result<(Terrain<Graph>, Vec<
     let mut tick = 0u32;
     while times.len() < count {
         tick += 1;
-        terrain.set_tick(tick);
+        terrain.set_tick(tick).map_err(|e| e.to_string())?;
         let Some(event) = barrage::next_event(level, &terrain, &mut rng, tick) else {
             continue;
         };

@@ -14,8 +14,8 @@ use std::time::Instant;
 use craterfield::field2d::Level;
 use craterfield::field2d::Sdf;
 use craterfield::field2d::{Event, EventKind};
-use craterfield::net::encode_events;
 use craterfield::net::wire::bytes_per_event;
+use craterfield::net::{DecodeLimits, encode_events_with_limits};
 use craterfield::sim::{EVENT_CENTER_STEP, Input, Settings, World};
 use glam::Vec2;
 use serde::Serialize;
@@ -142,6 +142,12 @@ pub(crate) fn sim(opts: Options) -> Result<ExitCode, String> {
     let match_events = played.events().to_vec();
 
     let barrage_events = sim_like(base.terrain().events(), &settings);
+    // One message of every event, to measure the format (a real stream sends small batches).
+    let unbounded = DecodeLimits {
+        max_batch_events: u32::MAX,
+        ..DecodeLimits::default()
+    };
+    let encode_events = |events: &[_]| encode_events_with_limits(events, &unbounded);
     let barrage_message = encode_events(&barrage_events).map_err(|e| e.to_string())?;
     let barrage_bpe = bytes_per_event(&barrage_message, barrage_events.len());
     let (bytes_per_event_, source) = if match_events.len() >= MIN_MATCH_EVENTS {
@@ -172,7 +178,7 @@ pub(crate) fn sim(opts: Options) -> Result<ExitCode, String> {
         bytes_per_event: bytes_per_event_,
         bytes_per_event_source: source,
         barrage_bytes_per_event: barrage_bpe,
-        explosions: base.terrain().events().len(),
+        explosions: base.terrain().events_applied() as usize,
         backend: base.terrain().backend().to_string(),
         threads: 1,
         ticks,

@@ -138,7 +138,7 @@ pub(crate) fn run(
     });
     let barrage_ms = t.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
-    let applied = terrain.events().len();
+    let applied = terrain.events_applied() as usize;
 
     let timings_q = time_queries(&terrain, &level);
     bar.set_message("render");

@@ -183,7 +183,7 @@ pub(crate) fn render(
     println!(
         "{}: tick {tick} of {ticks}: {vehicles} vehicles, {projectiles} projectiles, {debris} debris, {} terrain events; wrote {} ({}x{})",
         file.display(),
-        world.terrain().events().len(),
+        world.terrain().events_applied(),
         out.display(),
         img.width(),
         img.height()

@@ -60,8 +60,11 @@ pub struct DecodeLimits {
     /// Most players in a replay (default [`MAX_PLAYERS`](crate::sim::MAX_PLAYERS); the
     /// format holds at most 8).
     pub max_players: u8,
-    /// Most events in one wire message (default 2^20).
+    /// Most events in a terrain snapshot (default 2^20).
     pub max_events: u32,
+    /// Most events in one event batch (default 4,096: at most a few tenths of a second of
+    /// a receiver's time, where a 2^20-event batch cost 46 s).
+    pub max_batch_events: u32,
 }
 
 impl Default for DecodeLimits {
@@ -71,6 +74,7 @@ impl Default for DecodeLimits {
             max_ticks: 60 * 60 * 60 * 4,
             max_players: crate::sim::MAX_PLAYERS as u8,
             max_events: 1 << 20,
+            max_batch_events: 4096,
         }
     }
 }

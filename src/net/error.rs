@@ -142,6 +142,17 @@ pub enum EncodeError {
         /// Which invariant.
         detail: String,
     },
+    /// The terrain's history is no longer whole: compaction dropped events no cell
+    /// reaches, so replaying the kept ones would not give its grid.
+    #[error(
+        "the terrain keeps {kept} of the {applied} events it applied (its log was compacted): send its state instead of its history"
+    )]
+    HistoryCompacted {
+        /// Events the log keeps.
+        kept: u64,
+        /// Events applied over the terrain's life.
+        applied: u64,
+    },
     /// The value exceeds what the format can represent.
     #[error("{what} = {value} exceeds the format's limit of {limit}")]
     TooLarge {

@@ -23,4 +23,6 @@ pub mod wire;
 pub use codec::{DecodeLimits, crc32};
 pub use error::{DecodeError, DecodeErrorKind, EncodeError};
 pub use replay::{Recorder, Replay, VerifyError, VerifyReport, verify};
-pub use wire::{MessageKind, TerrainSnapshot, decode_events, encode_events};
+pub use wire::{
+    MessageKind, TerrainSnapshot, decode_events, encode_events, encode_events_with_limits,
+};

@@ -100,16 +100,38 @@ pub struct TerrainSnapshot {
 
 impl TerrainSnapshot {
     /// The snapshot of `terrain`, which was built from the level with hash `level_hash`.
-    pub fn of_terrain<F: Sdf>(level_hash: u64, terrain: &Terrain<F>) -> TerrainSnapshot {
-        TerrainSnapshot {
+    ///
+    /// A history is only whole until the terrain compacts its log
+    /// ([`Terrain::compact_history`]); after that it is [`EncodeError::HistoryCompacted`],
+    /// and a late joiner needs the grid itself.
+    pub fn of_terrain<F: Sdf>(
+        level_hash: u64,
+        terrain: &Terrain<F>,
+    ) -> Result<TerrainSnapshot, EncodeError> {
+        if !terrain.history_complete() {
+            return Err(EncodeError::HistoryCompacted {
+                kept: terrain.events().len() as u64,
+                applied: terrain.events_applied(),
+            });
+        }
+        Ok(TerrainSnapshot {
             level_hash,
             tick: terrain.tick(),
             events: terrain.events().to_vec(),
-        }
+        })
     }
 
-    /// Encodes the snapshot as a message (see the [module documentation](self)).
+    /// Encodes the snapshot as a message (see the [module documentation](self)); fails
+    /// if it holds more events than [`TerrainSnapshot::decode`] accepts.
     pub fn encode(&self) -> Result<Vec<u8>, EncodeError> {
+        let limit = DecodeLimits::default().max_events;
+        if self.events.len() as u64 > u64::from(limit) {
+            return Err(EncodeError::TooLarge {
+                what: "events in a snapshot",
+                value: self.events.len() as u64,
+                limit: limit.into(),
+            });
+        }
         let mut body = Writer::default();
         body.u64(self.level_hash);
         body.varint(self.tick.into());
@@ -131,7 +153,7 @@ impl TerrainSnapshot {
         r.enter("snapshot", None);
         let level_hash = r.u64()?;
         let tick = r.varint_u32("snapshot tick")?;
-        let events = read_event_list(&mut r, limits)?;
+        let events = read_event_list(&mut r, limits.max_events)?;
         Ok(TerrainSnapshot {
             level_hash,
             tick,
@@ -142,8 +164,24 @@ impl TerrainSnapshot {
 
 /// Encodes a batch of events as a message (see the [module documentation](self)).
 ///
-/// Fails if an event is invalid or the ticks decrease.
+/// Fails if an event is invalid, the ticks decrease, or the batch holds more events than
+/// [`decode_events`] accepts ([`DecodeLimits::max_batch_events`]).
 pub fn encode_events(events: &[Event]) -> Result<Vec<u8>, EncodeError> {
+    encode_events_with_limits(events, &DecodeLimits::default())
+}
+
+/// Encodes a batch of events for a reader with `limits`.
+pub fn encode_events_with_limits(
+    events: &[Event],
+    limits: &DecodeLimits,
+) -> Result<Vec<u8>, EncodeError> {
+    if events.len() as u64 > u64::from(limits.max_batch_events) {
+        return Err(EncodeError::TooLarge {
+            what: "events in a batch",
+            value: events.len() as u64,
+            limit: limits.max_batch_events.into(),
+        });
+    }
     let mut body = Writer::default();
     write_event_list(&mut body, events)?;
     frame(MessageKind::Events, &body.buf)
@@ -160,7 +198,7 @@ pub fn decode_events_with_limits(
     limits: &DecodeLimits,
 ) -> Result<Vec<Event>, DecodeError> {
     let mut r = unframe(bytes, MessageKind::Events, limits)?;
-    read_event_list(&mut r, limits)
+    read_event_list(&mut r, limits.max_batch_events)
 }
 
 /// The kind of the message starting with `bytes` (only its first byte is read).
@@ -383,10 +421,10 @@ fn write_shape(w: &mut Writer, s: &Shape) {
     w.varint(s.material.into());
 }
 
-fn read_event_list(r: &mut Reader<'_>, limits: &DecodeLimits) -> Result<Vec<Event>, DecodeError> {
+fn read_event_list(r: &mut Reader<'_>, max_events: u32) -> Result<Vec<Event>, DecodeError> {
     r.enter("event list", None);
     let at = r.offset();
-    let count = r.varint_max("event count", limits.max_events.into())?;
+    let count = r.varint_max("event count", max_events.into())?;
     let mut events = Vec::new();
     if count > 0 {
         let (q, origin) = read_grid(r)?;

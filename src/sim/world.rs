@@ -354,7 +354,7 @@ impl World {
         h.u32(self.tick);
         h.u32(self.next_id);
         h.word(self.events_hash);
-        h.word(self.terrain.events().len() as u64);
+        h.word(self.terrain.events_applied());
         h.word(self.bodies.len() as u64);
         for b in &self.bodies {
             b.hash_into(&mut h);
@@ -416,7 +416,7 @@ impl World {
         }
         self.remember_mark();
         self.tick += 1;
-        self.terrain.set_tick(self.tick);
+        self.terrain.set_tick(self.tick)?;
         let dt = self.settings.dt();
         let mut blasts = Vec::new();
         self.control(inputs);
@@ -780,4 +780,105 @@ fn sample_all(
             .into_iter()
             .try_for_each(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::field2d::TerrainOptions;
+    use crate::sim::input::buttons;
+
+    /// Player `p`'s input at tick `t`: both weapons, many aims and powers, fire toggled
+    /// every other tick so each press is a new shot.
+    fn input(p: usize, t: u32) -> Input {
+        let k = t.wrapping_mul(2_654_435_761).rotate_left(p as u32 * 7);
+        Input {
+            aim: (k >> 8) as u16 % 32768,
+            buttons: if t.is_multiple_of(2) {
+                buttons::FIRE
+            } else {
+                0
+            },
+            drive: ((k >> 3) % 60) as i8 - 30,
+            power: 120 + (k % 136) as u8,
+            weapon: ((k >> 20) % 2) as u8,
+        }
+    }
+
+    fn settings() -> Settings {
+        let mut s = Settings::default();
+        s.shell.cooldown_ticks = 1;
+        s.dirt.cooldown_ticks = 1;
+        s.vehicle.health = 1_000_000;
+        s
+    }
+
+    /// A world whose terrain compacts its log past `max_events` events. The terrain is
+    /// swapped in after `new`, so the setup (and every state hash) is the plain world's.
+    fn compacting_world(max_events: usize) -> World {
+        let level = Level::default_level();
+        let mut w = World::new(&level, settings(), 4).unwrap();
+        let b = level.bounds();
+        let o = TerrainOptions {
+            max_events,
+            ..level.terrain_options()
+        };
+        let mut terrain = Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
+        terrain.enable_rollback();
+        w.terrain = terrain;
+        w
+    }
+
+    #[test]
+    fn a_compacting_terrain_keeps_every_state_hash_through_restores() {
+        let level = Level::default_level();
+        let mut plain = World::new(&level, settings(), 4).unwrap();
+        let mut small = compacting_world(24);
+        let mut saved = None;
+        let mut applied_at = Vec::new();
+        for t in 0..1200u32 {
+            let inputs: Vec<Input> = (0..4).map(|p| input(p, t)).collect();
+            plain.step(&inputs).unwrap();
+            small.step(&inputs).unwrap();
+            applied_at.push(plain.terrain.events_applied());
+            assert_eq!(plain.state_hash(), small.state_hash(), "tick {t}");
+            // Now and then go back a few ticks and play them again, as rollback does.
+            if t % 97 == 0 {
+                saved = Some(small.snapshot());
+            } else if t % 97 == 9
+                && let Some(s) = saved.take()
+            {
+                small.restore(&s).unwrap();
+                for u in s.tick()..small.tick() + 9 {
+                    let inputs: Vec<Input> = (0..4).map(|p| input(p, u)).collect();
+                    small.step(&inputs).unwrap();
+                }
+                assert_eq!(plain.state_hash(), small.state_hash(), "redo to {t}");
+            }
+        }
+        // Between compactions the log may grow to twice what the last one kept.
+        let grown = small.terrain.events().len();
+        small.terrain.compact_history();
+        let (kept, applied) = (small.terrain.events().len(), small.terrain.events_applied());
+        assert!(
+            grown <= 2 * kept.max(24),
+            "{grown} events held, {kept} needed"
+        );
+        assert!(applied > 1000, "{applied} explosions applied");
+        assert_eq!(applied, plain.terrain.events_applied());
+        assert!(!small.terrain.history_complete());
+        // The log keeps what cells still list and what a restore may still take back.
+        let grid = small.terrain.grid();
+        let listed: std::collections::BTreeSet<u32> = (0..grid.cell_count())
+            .filter_map(|i| grid.cell(i))
+            .flat_map(|c| c.events().iter().copied())
+            .collect();
+        let window = (applied - applied_at[applied_at.len() - 130]) as usize;
+        assert!(
+            kept <= listed.len() + window,
+            "{kept} of {applied} kept, {} listed, {window} in the rollback window",
+            listed.len()
+        );
+        assert!(kept < applied as usize, "{kept} of {applied} kept");
+    }
 }

@@ -89,10 +89,24 @@ pub enum TerrainError {
         /// The limit.
         max: usize,
     },
-    /// The terrain already holds `max_events` events.
-    #[error("too many events: the terrain already holds max_events = {max}")]
-    TooManyEvents {
-        /// The limit.
-        max: usize,
+    /// The log still holds `u32::MAX` events after compaction (cell lists index it with
+    /// `u32`): every one of them still reaches some cell.
+    #[error("the event log holds {kept} events that all still reach a cell; no more fit")]
+    LogFull {
+        /// Events kept.
+        kept: usize,
+    },
+    /// Moving the tick backwards needs the whole event history, and compaction dropped
+    /// part of it.
+    #[error(
+        "cannot move the tick back from {current} to {tick}: compaction dropped {forgotten} events a rebuild would need (roll back to a mark instead)"
+    )]
+    HistoryCompacted {
+        /// The tick asked for.
+        tick: u32,
+        /// The terrain's tick.
+        current: u32,
+        /// Events compaction dropped.
+        forgotten: u64,
     },
 }

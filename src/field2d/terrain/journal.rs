@@ -1,8 +1,9 @@
 //! The undo journal: what each change of a terrain overwrote, so that rolling back to a
 //! mark costs what changed since the mark, never the whole terrain.
 //!
-//! The event log is append-only and the grid's cells change only when an event is
-//! inserted or a tick change bakes a list, so every change is recorded as the pre-image of
+//! The event log is append-only (compaction drops only events no cell or pre-image holds,
+//! and none the journal may pop, renumbering the pre-images with the cells) and the grid's
+//! cells change only when an event is inserted or a tick change bakes a list, so every change is recorded as the pre-image of
 //! what it touched: a cell (its state, list and over-cap flag), a brick slot, one step of
 //! the brick free list, an appended event, or the previous tick. Undoing the entries in
 //! reverse restores the exact bytes, bricks included, so a re-simulation after a rollback
@@ -53,8 +54,8 @@ pub struct TerrainMark {
     origin: u64,
     /// The grid's counters at the mark.
     stats: GridStats,
-    /// Events in the log at the mark.
-    events: u32,
+    /// Events applied before the mark (over the terrain's life).
+    events: u64,
 }
 
 impl TerrainMark {
@@ -68,8 +69,9 @@ impl TerrainMark {
         self.stats
     }
 
-    /// Events in the log at the mark.
-    pub fn events(&self) -> u32 {
+    /// Events applied before the mark, over the terrain's life (what
+    /// [`crate::field2d::Terrain::events_applied`] returns after rolling back to it).
+    pub fn events(&self) -> u64 {
         self.events
     }
 }
@@ -145,7 +147,7 @@ impl Journal {
     }
 
     /// A mark at the current end.
-    pub(crate) fn mark(&self, stats: GridStats, events: u32) -> TerrainMark {
+    pub(crate) fn mark(&self, stats: GridStats, events: u64) -> TerrainMark {
         TerrainMark {
             pos: self.end(),
             serial: self.entries.back().map_or(self.start_serial, |e| e.0),
@@ -210,5 +212,29 @@ impl Journal {
     /// Entries kept.
     pub(crate) fn len(&self) -> usize {
         self.entries.len()
+    }
+
+    /// Events appended since the oldest kept entry: the ones an undo may pop.
+    pub(crate) fn appended_events(&self) -> usize {
+        self.entries
+            .iter()
+            .filter(|(_, e)| matches!(e, Entry::Event))
+            .count()
+    }
+
+    /// The cell pre-images kept.
+    pub(crate) fn cell_images(&self) -> impl Iterator<Item = &Cell> {
+        self.entries.iter().filter_map(|(_, e)| match e {
+            Entry::Cell { before, .. } => Some(before),
+            _ => None,
+        })
+    }
+
+    /// The cell pre-images kept, to rewrite their lists when the log is compacted.
+    pub(crate) fn cell_images_mut(&mut self) -> impl Iterator<Item = &mut Cell> {
+        self.entries.iter_mut().filter_map(|(_, e)| match e {
+            Entry::Cell { before, .. } => Some(before),
+            _ => None,
+        })
     }
 }

@@ -70,6 +70,7 @@
 
 mod batch;
 mod cell_tapes;
+mod compact;
 mod error;
 mod eval;
 mod field;
@@ -117,6 +118,10 @@ pub struct Terrain<F: Sdf> {
     backend: Backend,
     /// The next cell revision to hand out (never reused, not rolled back).
     next_revision: u64,
+    /// Events compaction dropped from the log (not rolled back: they were unreachable).
+    forgotten: u64,
+    /// Events the log kept after the last compaction (when the next one is due).
+    kept_after_compaction: usize,
 }
 
 impl<F: Sdf> Terrain<F> {
@@ -143,6 +148,8 @@ impl<F: Sdf> Terrain<F> {
             cell_tapes,
             backend: Backend::best(),
             next_revision: 1,
+            forgotten: 0,
+            kept_after_compaction: 0,
         })
     }
 
@@ -161,7 +168,9 @@ impl<F: Sdf> Terrain<F> {
         self.bounds
     }
 
-    /// The events applied so far, in order.
+    /// The events the log holds, in the order they were applied: every event applied so
+    /// far while [`Terrain::history_complete`], else the ones compaction kept (see
+    /// [`Terrain::compact_history`]). Cell lists index into it.
     pub fn events(&self) -> &[Event] {
         &self.events
     }
@@ -180,9 +189,6 @@ impl<F: Sdf> Terrain<F> {
     pub fn validate_event(&self, e: &Event) -> Result<(), TerrainError> {
         e.validate()?;
         let o = &self.options;
-        if self.events.len() >= o.max_events {
-            return Err(TerrainError::TooManyEvents { max: o.max_events });
-        }
         let r = e.radius_f32();
         if r > o.max_event_radius {
             return Err(TerrainError::RadiusTooLarge {
@@ -226,9 +232,16 @@ impl<F: Sdf> Terrain<F> {
         Ok(())
     }
 
-    /// Applies an event. On error nothing changes.
+    /// Applies an event. On error nothing changes. When the log is full
+    /// ([`TerrainOptions::max_events`]) it is compacted first, which changes no query.
     pub fn apply(&mut self, e: Event) -> Result<(), TerrainError> {
         self.validate_event(&e)?;
+        self.compact_if_full();
+        if self.events.len() >= u32::MAX as usize {
+            return Err(TerrainError::LogFull {
+                kept: self.events.len(),
+            });
+        }
         let idx = self.events.len() as u32;
         self.events.push(e);
         self.grid.record(Entry::Event);
@@ -237,9 +250,13 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// Sets the current tick. Moving forwards bakes lists that were waiting for growing
-    /// events to settle; moving backwards rebuilds the grid from the events (cost of a replay).
-    pub fn set_tick(&mut self, tick: u32) {
+    /// events to settle; moving backwards rebuilds the grid from the events (cost of a
+    /// replay), which needs the whole history: once compaction has dropped events it is
+    /// [`TerrainError::HistoryCompacted`] and nothing changes (roll back to a
+    /// [`TerrainMark`] instead).
+    pub fn set_tick(&mut self, tick: u32) -> Result<(), TerrainError> {
         if tick < self.tick {
+            self.check_rebuild(tick)?;
             self.tick = tick;
             self.rebuild();
         } else if tick > self.tick {
@@ -256,6 +273,7 @@ impl<F: Sdf> Terrain<F> {
                 self.compact(cell);
             }
         }
+        Ok(())
     }
 
     /// A revision number never handed out before.

@@ -30,7 +30,10 @@ pub struct TerrainOptions {
     pub max_event_radius: f32,
     /// Largest accepted rim (blend width), world units.
     pub max_rim: f32,
-    /// Most events a terrain accepts.
+    /// Events the log holds before it is compacted (events no cell can reach any more
+    /// are dropped; see [`Terrain::compact_history`](super::Terrain::compact_history)).
+    /// Not a limit on a match's length: a terrain accepts events for as long as cells
+    /// take them.
     pub max_events: usize,
     /// Fills must use a material below this.
     pub material_count: u16,

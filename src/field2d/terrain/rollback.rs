@@ -18,7 +18,7 @@ impl<F: Sdf> Terrain<F> {
     /// The current position in the terrain's history, if rollback is enabled.
     pub fn mark(&self) -> Option<TerrainMark> {
         let j = self.grid.journal.as_ref()?;
-        Some(j.mark(self.grid.stats, self.events.len() as u32))
+        Some(j.mark(self.grid.stats, self.events_applied()))
     }
 
     /// Returns to `mark`: events applied and tick changes made since are undone, in
