@@ -32,7 +32,7 @@ pub use crate::field2d::{
 pub use crate::net::{
     DecodeError, Recorder, Replay, TerrainSnapshot, decode_events, encode_events,
 };
-pub use crate::sim::{Input, Settings, SimError, Snapshot, World, buttons};
+pub use crate::sim::{Input, Settings, SimError, Snapshot, World, WorldState, buttons};
 
 #[cfg(feature = "raster")]
 pub use crate::render2d::{Camera, Reconstruction, RenderOptions, render_exact, render_twin};

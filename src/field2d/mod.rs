@@ -34,4 +34,5 @@ pub use sample::{MaterialId, Sample};
 pub use sdf::Sdf;
 pub use terrain::{
     CellState, CellView, Grid, GridStats, MaterialSource, Terrain, TerrainError, TerrainOptions,
+    TerrainState,
 };

@@ -65,6 +65,9 @@ pub struct DecodeLimits {
     /// Most events in one event batch (default 4,096: at most a few tenths of a second of
     /// a receiver's time, where a 2^20-event batch cost 46 s).
     pub max_batch_events: u32,
+    /// Longest world-state message, bytes (default 32 MiB; decoding one allocates at most
+    /// a few times its length).
+    pub max_state_bytes: usize,
 }
 
 impl Default for DecodeLimits {
@@ -75,6 +78,7 @@ impl Default for DecodeLimits {
             max_players: crate::sim::MAX_PLAYERS as u8,
             max_events: 1 << 20,
             max_batch_events: 4096,
+            max_state_bytes: 32 << 20,
         }
     }
 }

@@ -4,6 +4,7 @@
 //!   re-simulate a match bit for bit, with [`replay::verify`] to prove it;
 //! - [`wire`]: messages of terrain events and terrain snapshots, for clients of an
 //!   authoritative server and for late joiners;
+//! - [`state`]: whole-world state messages, for a peer that resyncs after a desync;
 //! - `codec`: the shared byte-level rules, and why the structured parts use postcard;
 //! - `error`: what decoding and encoding report.
 //!
@@ -18,11 +19,13 @@ mod error;
 pub mod replay;
 #[cfg(feature = "ggrs")]
 pub mod rollback;
+pub mod state;
 pub mod wire;
 
 pub use codec::{DecodeLimits, crc32};
 pub use error::{DecodeError, DecodeErrorKind, EncodeError};
 pub use replay::{Recorder, Replay, VerifyError, VerifyReport, verify};
+pub use state::{decode_state, encode_state};
 pub use wire::{
     MessageKind, TerrainSnapshot, decode_events, encode_events, encode_events_with_limits,
 };

@@ -10,13 +10,13 @@
 //!
 //! # Message layout (version 1)
 //!
-//! | offset | size | field                                                     |
-//! |--------|------|-----------------------------------------------------------|
-//! | 0      | 1    | kind ([`MessageKind`]: 1 event batch, 2 terrain snapshot) |
-//! | 1      | 1    | format version ([`VERSION`])                              |
-//! | 2      | 4    | body length `L`, `u32 LE`                                 |
-//! | 6      | `L`  | body                                                      |
-//! | 6 + L  | 4    | CRC-32 of bytes `0 .. 6 + L`, `u32 LE`                    |
+//! | offset | size | field |
+//! |--------|------|-------|
+//! | 0      | 1    | kind ([`MessageKind`]: 1 event batch, 2 terrain snapshot, 3 world state) |
+//! | 1      | 1    | format version ([`VERSION`]) |
+//! | 2      | 4    | body length `L`, `u32 LE` |
+//! | 6      | `L`  | body |
+//! | 6 + L  | 4    | CRC-32 of bytes `0 .. 6 + L`, `u32 LE` |
 //!
 //! The first [`HEADER_LEN`] bytes tell a stream reader the whole length
 //! ([`message_len`]).
@@ -75,6 +75,8 @@ pub enum MessageKind {
     Events = 1,
     /// A terrain snapshot ([`TerrainSnapshot`]).
     Snapshot = 2,
+    /// A whole world's state, for a resync ([`crate::net::state`]).
+    State = 3,
 }
 
 impl MessageKind {
@@ -82,6 +84,7 @@ impl MessageKind {
         match b {
             1 => Some(MessageKind::Events),
             2 => Some(MessageKind::Snapshot),
+            3 => Some(MessageKind::State),
             _ => None,
         }
     }
@@ -103,7 +106,7 @@ impl TerrainSnapshot {
     ///
     /// A history is only whole until the terrain compacts its log
     /// ([`Terrain::compact_history`]); after that it is [`EncodeError::HistoryCompacted`],
-    /// and a late joiner needs the grid itself.
+    /// and a late joiner needs the grid itself ([`crate::net::state`]).
     pub fn of_terrain<F: Sdf>(
         level_hash: u64,
         terrain: &Terrain<F>,
@@ -238,7 +241,7 @@ pub fn bytes_per_event(message: &[u8], events: usize) -> f64 {
     message.len() as f64 / events.max(1) as f64
 }
 
-fn frame(kind: MessageKind, body: &[u8]) -> Result<Vec<u8>, EncodeError> {
+pub(super) fn frame(kind: MessageKind, body: &[u8]) -> Result<Vec<u8>, EncodeError> {
     if u32::try_from(body.len()).is_err() {
         return Err(EncodeError::TooLarge {
             what: "message body length",
@@ -270,7 +273,7 @@ fn check_version(r: &mut Reader<'_>) -> Result<(), DecodeError> {
 }
 
 /// Checks the framing and the checksum; returns a reader over the body.
-fn unframe<'a>(
+pub(super) fn unframe<'a>(
     bytes: &'a [u8],
     kind: MessageKind,
     limits: &DecodeLimits,

@@ -7,7 +7,8 @@
 //! fixed point, and every field query goes through the terrain's batch evaluator, whose
 //! backends all agree bit for bit. [`World::state_hash`] summarises a tick in 64 bits for
 //! desync checks; [`World::snapshot`] and [`World::restore`] cost O(bodies + terrain changes
-//! since the snapshot), never O(terrain).
+//! since the snapshot), never O(terrain). [`World::state`] and [`World::resync`] move a
+//! whole world, terrain grid included, to a peer that must continue from it (a desync).
 
 pub(crate) mod body;
 pub(crate) mod collide;
@@ -16,10 +17,12 @@ pub(crate) mod hash;
 pub(crate) mod input;
 pub mod projectile;
 pub(crate) mod settings;
+pub(crate) mod state;
 pub(crate) mod world;
 
 pub use body::{Body, BodyKind};
 pub use hash::StateHasher;
 pub use input::{Input, InputError, buttons};
 pub use settings::{Settings, SettingsError, VehicleSettings, WeaponSettings, units};
+pub use state::WorldState;
 pub use world::{EVENT_CENTER_STEP, MAX_PLAYERS, SimError, Snapshot, World, level_hash};

@@ -94,6 +94,15 @@ pub enum SimError {
         /// Why.
         reason: String,
     },
+    /// A [`WorldState`](super::WorldState) does not fit this world (another match, or
+    /// altered on the way).
+    #[error("cannot resync from the state of tick {tick}: {detail}")]
+    BadState {
+        /// The state's tick.
+        tick: u32,
+        /// What does not fit.
+        detail: String,
+    },
 }
 
 /// Everything needed to return the world to one tick: the bodies and a terrain mark.
@@ -118,18 +127,18 @@ impl Snapshot {
 /// A match in progress.
 #[derive(Clone, Debug)]
 pub struct World {
-    settings: Settings,
+    pub(super) settings: Settings,
     /// Hash of the level, the settings and the player count (see [`setup_hash`]).
-    setup: u64,
-    terrain: Terrain<Graph>,
-    players: usize,
-    tick: u32,
-    bodies: Vec<Body>,
-    next_id: u32,
+    pub(super) setup: u64,
+    pub(super) terrain: Terrain<Graph>,
+    pub(super) players: usize,
+    pub(super) tick: u32,
+    pub(super) bodies: Vec<Body>,
+    pub(super) next_id: u32,
     /// Chain hash of the terrain's event log.
-    events_hash: u64,
+    pub(super) events_hash: u64,
     /// Terrain marks at the start of each of the last `rollback_ticks` ticks.
-    marks: VecDeque<(u32, TerrainMark)>,
+    pub(super) marks: VecDeque<(u32, TerrainMark)>,
     threads: usize,
     scratch: Scratch,
 }
@@ -170,6 +179,29 @@ fn setup_hash(level: &Level, settings: &Settings, players: usize) -> u64 {
     // Postcard writes the fields in declaration order as varints: canonical bytes.
     h.bytes(&postcard::to_stdvec(settings).unwrap_or_default());
     h.word(players as u64);
+    h.finish()
+}
+
+/// The state hash over its parts (see [`World::state_hash`]), so a received
+/// [`WorldState`](super::WorldState) can be checked before it is applied.
+pub(super) fn state_hash_of(
+    setup: u64,
+    tick: u32,
+    next_id: u32,
+    events_hash: u64,
+    events_applied: u64,
+    bodies: &[Body],
+) -> u64 {
+    let mut h = StateHasher::new(0x7374_6174_6500);
+    h.word(setup);
+    h.u32(tick);
+    h.u32(next_id);
+    h.word(events_hash);
+    h.word(events_applied);
+    h.word(bodies.len() as u64);
+    for b in bodies {
+        b.hash_into(&mut h);
+    }
     h.finish()
 }
 
@@ -349,17 +381,14 @@ impl World {
     /// and the terrain's event log, over canonical words. O(bodies): the event log is
     /// folded into a chain hash as events are applied.
     pub fn state_hash(&self) -> u64 {
-        let mut h = StateHasher::new(0x7374_6174_6500);
-        h.word(self.setup);
-        h.u32(self.tick);
-        h.u32(self.next_id);
-        h.word(self.events_hash);
-        h.word(self.terrain.events_applied());
-        h.word(self.bodies.len() as u64);
-        for b in &self.bodies {
-            b.hash_into(&mut h);
-        }
-        h.finish()
+        state_hash_of(
+            self.setup,
+            self.tick,
+            self.next_id,
+            self.events_hash,
+            self.terrain.events_applied(),
+            &self.bodies,
+        )
     }
 
     /// A snapshot of the current tick.
@@ -721,14 +750,17 @@ impl World {
     /// Removes spent projectiles, destroyed vehicles and bodies that left the world.
     fn remove_dead(&mut self) {
         let (lo, hi) = self.terrain.bounds();
-        let inside = |p: Vec2| {
-            p.x >= lo.x - OUT_OF_WORLD
-                && p.x <= hi.x + OUT_OF_WORLD
-                && p.y >= lo.y - BELOW_WORLD
-                && p.y <= hi.y + 8.0 * OUT_OF_WORLD
-        };
-        self.bodies.retain(|b| b.health > 0 && inside(b.pos));
+        self.bodies
+            .retain(|b| b.health > 0 && in_play(b.pos, lo, hi));
     }
+}
+
+/// Whether a body at `p` is still in play in a level of bounds `[lo, hi]`.
+pub(super) fn in_play(p: Vec2, lo: Vec2, hi: Vec2) -> bool {
+    p.x >= lo.x - OUT_OF_WORLD
+        && p.x <= hi.x + OUT_OF_WORLD
+        && p.y >= lo.y - BELOW_WORLD
+        && p.y <= hi.y + 8.0 * OUT_OF_WORLD
 }
 
 /// The weapon of a projectile.
@@ -880,5 +912,15 @@ mod tests {
             listed.len()
         );
         assert!(kept < applied as usize, "{kept} of {applied} kept");
+
+        // A late joiner cannot replay a compacted history; it continues from the state.
+        let mut joiner = World::new(&level, settings(), 4).unwrap();
+        joiner.resync(&small.state()).unwrap();
+        for t in 1200..1300u32 {
+            let inputs: Vec<Input> = (0..4).map(|p| input(p, t)).collect();
+            small.step(&inputs).unwrap();
+            joiner.step(&inputs).unwrap();
+            assert_eq!(small.state_hash(), joiner.state_hash(), "tick {t}");
+        }
     }
 }

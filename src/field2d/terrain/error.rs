@@ -96,6 +96,13 @@ pub enum TerrainError {
         /// Events kept.
         kept: usize,
     },
+    /// A [`TerrainState`](super::TerrainState) does not fit this terrain (it was taken
+    /// from another level or options, or it was altered).
+    #[error("terrain state: {detail}")]
+    BadState {
+        /// What does not fit, and where.
+        detail: String,
+    },
     /// Moving the tick backwards needs the whole event history, and compaction dropped
     /// part of it.
     #[error(

@@ -81,6 +81,7 @@ mod maintain;
 mod options;
 mod proof;
 mod rollback;
+mod state;
 
 use std::collections::BTreeSet;
 
@@ -100,6 +101,7 @@ pub use journal::{RollbackError, TerrainMark};
 pub use limits::{MAX_BRICK_BYTES, MAX_CELL_TAPE_BYTES, MAX_COORD};
 pub use options::TerrainOptions;
 pub use proof::{CellBounds, EventDiscs, RectSign};
+pub use state::TerrainState;
 
 /// A base field with carves and fills applied, queried through an explosion grid.
 #[derive(Clone, Debug)]
@@ -187,6 +189,24 @@ impl<F: Sdf> Terrain<F> {
 
     /// Checks `e` against the options and bounds without changing anything.
     pub fn validate_event(&self, e: &Event) -> Result<(), TerrainError> {
+        self.check_event(e)?;
+        if let Some(cell) = self.full_cell_for(e) {
+            let r = self.grid.cell_rect(cell);
+            let at = glam::Vec2::new(
+                ((r.min[0] + r.max[0]) * 0.5) as f32,
+                ((r.min[1] + r.max[1]) * 0.5) as f32,
+            );
+            return Err(TerrainError::CellFull {
+                at,
+                max: self.options.max_cell_events,
+            });
+        }
+        Ok(())
+    }
+
+    /// The checks of an event on its own: valid, within the options' sizes and the bounds,
+    /// of a known material.
+    fn check_event(&self, e: &Event) -> Result<(), TerrainError> {
         e.validate()?;
         let o = &self.options;
         let r = e.radius_f32();
@@ -216,17 +236,6 @@ impl<F: Sdf> Terrain<F> {
             return Err(TerrainError::BadMaterial {
                 material: e.material,
                 count: o.material_count,
-            });
-        }
-        if let Some(cell) = self.full_cell_for(e) {
-            let r = self.grid.cell_rect(cell);
-            let at = glam::Vec2::new(
-                ((r.min[0] + r.max[0]) * 0.5) as f32,
-                ((r.min[1] + r.max[1]) * 0.5) as f32,
-            );
-            return Err(TerrainError::CellFull {
-                at,
-                max: o.max_cell_events,
             });
         }
         Ok(())

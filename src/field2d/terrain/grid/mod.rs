@@ -339,6 +339,26 @@ impl Grid {
         }
     }
 
+    /// Every brick slot (freed ones are empty) and the free list, for a state snapshot.
+    pub(in crate::field2d::terrain) fn brick_slots(&self) -> (&[Brick], &[u32]) {
+        (&self.bricks, &self.free_bricks)
+    }
+
+    /// Replaces every cell, brick slot, the free list and the counters at once (a state
+    /// snapshot the terrain has checked). The journal is left to the caller.
+    pub(in crate::field2d::terrain) fn replace_contents(
+        &mut self,
+        cells: Vec<Cell>,
+        bricks: Vec<Brick>,
+        free_bricks: Vec<u32>,
+        stats: GridStats,
+    ) {
+        self.cells = cells;
+        self.bricks = bricks;
+        self.free_bricks = free_bricks;
+        self.stats = stats;
+    }
+
     /// Records a pre-image when journaling.
     pub(crate) fn record(&mut self, e: Entry) {
         if let Some(j) = &mut self.journal {
