@@ -1,13 +1,15 @@
 #![cfg(feature = "ggrs")]
 //! Two OS processes play a scripted match as a GGRS peer-to-peer session over UDP on
-//! 127.0.0.1, with desync detection on, and must end on the same confirmed state: the
-//! state of a plain run of the same inputs.
+//! 127.0.0.1, with desync detection on (the library's session builder, every frame), and
+//! must end on the same confirmed state: the state of a plain run of the same inputs. Peers
+//! of different settings must see a desync reported at the first frame compared.
 //!
 //! The test binary is its own peer: a test re-executes the binary twice, running only
 //! itself, with `CRATERFIELD_GGRS_PEER` telling each child its player handle, its port,
 //! the other's port, the frames to play and the script's seed. A child prints
 //! `FINAL <tick> <hash>` (the state hash at tick `<tick>` once every input before it is
-//! confirmed), `STATS ...`, and `DESYNC ...` for every desync GGRS reports.
+//! confirmed), `STATS ...`, `DESYNC ...` for every desync GGRS reports and
+//! `FIRST_DESYNC <frame> <since>` for the earliest.
 
 mod common;
 use common::scripted_input;
@@ -19,20 +21,17 @@ use std::thread;
 use std::time::{Duration, Instant};
 
 use craterfield::field2d::Level;
-use craterfield::net::rollback::{P2PSession, Request, SessionBuilder, handle_request};
-use craterfield::sim::{Input, Settings, World};
-use ggrs::{
-    DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, PlayerType, SessionState,
-    UdpNonBlockingSocket,
+use craterfield::net::rollback::{
+    DESYNC_INTERVAL, DesyncMonitor, P2PSession, Request, handle_request, session_builder,
 };
+use craterfield::sim::{Input, Settings, World};
+use ggrs::{GgrsError, GgrsEvent, GgrsRequest, PlayerType, SessionState, UdpNonBlockingSocket};
 
 const PEER_ENV: &str = "CRATERFIELD_GGRS_PEER";
 /// Frames (ticks) of scripted play; the match is judged on the state at this tick.
 const FRAMES: u32 = 600;
 /// The peers run faster than real time: a frame every 2 ms.
 const FPS: u32 = 500;
-/// Frames between two checksum reports.
-const DESYNC_INTERVAL: u32 = 10;
 
 /// A child's part in a match.
 #[derive(Clone, Copy, Debug)]
@@ -123,13 +122,20 @@ struct Outcome {
     resimulated: u64,
     skipped: u64,
     desyncs: Vec<String>,
+    monitor: DesyncMonitor,
 }
 
 /// Drains the session's events: returns the frames GGRS recommends skipping, records
 /// desyncs, and fails on a disconnect.
-fn drain_events(session: &mut P2PSession, desyncs: &mut Vec<String>, strict: bool) -> u32 {
+fn drain_events(
+    session: &mut P2PSession,
+    desyncs: &mut Vec<String>,
+    monitor: &mut DesyncMonitor,
+    strict: bool,
+) -> u32 {
     let mut skip = 0;
     for event in session.events() {
+        monitor.observe(&event);
         match event {
             GgrsEvent::WaitRecommendation { skip_frames } => skip += skip_frames,
             GgrsEvent::DesyncDetected {
@@ -158,16 +164,13 @@ fn play(peer: Peer) -> Outcome {
     let strict = !peer.desync_test;
     let perturb = peer.desync_test && peer.handle == 1;
     let remote = std::net::SocketAddr::from(([127, 0, 0, 1], peer.remote_port));
-    let mut session = SessionBuilder::new()
+    let mut session = session_builder()
         .with_num_players(2)
         .unwrap()
         .with_fps(FPS as usize)
         .unwrap()
         .with_input_delay(0)
         .with_max_prediction_window(8)
-        .with_desync_detection_mode(DesyncDetection::On {
-            interval: DESYNC_INTERVAL,
-        })
         .with_disconnect_timeout(Duration::from_secs(10 * u64::from(scale)))
         .with_disconnect_notify_delay(Duration::from_secs(2))
         .add_player(PlayerType::Local, peer.handle)
@@ -178,6 +181,7 @@ fn play(peer: Peer) -> Outcome {
         .unwrap();
 
     let mut desyncs = Vec::new();
+    let mut monitor = DesyncMonitor::new(DESYNC_INTERVAL);
     let sync_deadline = Instant::now() + Duration::from_secs(15 * u64::from(scale));
     while session.current_state() != SessionState::Running {
         assert!(
@@ -187,7 +191,7 @@ fn play(peer: Peer) -> Outcome {
             peer.remote_port
         );
         session.poll_remote_clients();
-        drain_events(&mut session, &mut desyncs, strict);
+        drain_events(&mut session, &mut desyncs, &mut monitor, strict);
         thread::sleep(Duration::from_millis(1));
     }
 
@@ -213,7 +217,7 @@ fn play(peer: Peer) -> Outcome {
         }
         next_frame = (next_frame + period).max(Instant::now());
 
-        skip += drain_events(&mut session, &mut desyncs, strict);
+        skip += drain_events(&mut session, &mut desyncs, &mut monitor, strict);
         if skip > 0 {
             // GGRS recommends letting the other peer catch up.
             skip -= 1;
@@ -264,7 +268,7 @@ fn play(peer: Peer) -> Outcome {
     let remote_handle = 1 - peer.handle;
     while Instant::now() < linger {
         session.poll_remote_clients();
-        drain_events(&mut session, &mut desyncs, strict);
+        drain_events(&mut session, &mut desyncs, &mut monitor, strict);
         let acknowledged = session
             .network_stats(remote_handle)
             .is_ok_and(|stats| stats.send_queue_len == 0);
@@ -280,6 +284,7 @@ fn play(peer: Peer) -> Outcome {
         resimulated,
         skipped,
         desyncs,
+        monitor,
     }
 }
 
@@ -289,6 +294,9 @@ fn run_child(peer: Peer) {
     println!();
     for line in &outcome.desyncs {
         println!("{line}");
+    }
+    if let Some(first) = outcome.monitor.first() {
+        println!("FIRST_DESYNC {} {}", first.frame, first.since);
     }
     println!(
         "STATS {} {} {}",
@@ -508,5 +516,17 @@ fn desync_between_processes_is_detected() {
         reports[1]
     );
     eprintln!("desyncs reported: {desyncs}");
+    // The setups differ (the state hash covers the settings), so the very first frame
+    // compared is the first divergent one, and the report names it.
+    for report in &reports {
+        let first = report.lines("FIRST_DESYNC ");
+        if let Some(f) = first.first() {
+            assert_eq!(f, &["1", "1"], "{report}");
+        }
+    }
+    assert!(
+        reports.iter().any(|r| !r.lines("FIRST_DESYNC ").is_empty()),
+        "no first desync reported"
+    );
     assert_ne!(reports[0].final_state(), reports[1].final_state());
 }

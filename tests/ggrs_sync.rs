@@ -9,7 +9,10 @@ mod common;
 use common::scripted_input;
 
 use craterfield::field2d::Level;
-use craterfield::net::rollback::{SessionBuilder, handle_requests};
+use craterfield::net::rollback::{
+    SessionBuilder, handle_requests, handle_requests_from, session_builder,
+};
+use craterfield::net::state::{decode_state, encode_state};
 use craterfield::sim::{Input, Settings, World};
 
 const FRAMES: u32 = 1200;
@@ -113,4 +116,51 @@ fn sync_test_with_input_delay() {
 #[test]
 fn sync_test_eight_players() {
     sync_test(8, 3, 1, 9);
+}
+
+/// The desync path: a world that diverged resyncs from a peer's encoded state, then a new
+/// sync-test session starts at the resynced tick (frame 0 = that tick) and rolls back
+/// and re-simulates without a mismatch, ending where the peer's plain run ends.
+#[test]
+fn a_resynced_world_continues_under_a_new_session() {
+    let level = Level::default_level();
+    let players = 2;
+    let mut good = World::new(&level, settings(), players).unwrap();
+    let mut diverged = World::new(&level, settings(), players).unwrap();
+    for tick in 0..300 {
+        let row = |seed| -> Vec<Input> {
+            (0..players)
+                .map(|p| scripted_input(seed, p, tick))
+                .collect()
+        };
+        good.step(&row(21)).unwrap();
+        diverged.step(&row(22)).unwrap();
+    }
+    assert_ne!(good.state_hash(), diverged.state_hash());
+    let message = encode_state(&good.state()).unwrap();
+    diverged.resync(&decode_state(&message).unwrap()).unwrap();
+    let origin = diverged.tick();
+
+    let mut session = session_builder()
+        .with_num_players(players)
+        .unwrap()
+        .with_max_prediction_window(5)
+        .with_check_distance(4)
+        .start_synctest_session()
+        .unwrap();
+    for frame in 0..300u32 {
+        for player in 0..players {
+            session
+                .add_local_input(player, scripted_input(23, player, origin + frame))
+                .unwrap();
+        }
+        let requests = session.advance_frame().unwrap();
+        handle_requests_from(&mut diverged, origin, requests).unwrap();
+        let inputs: Vec<Input> = (0..players)
+            .map(|p| scripted_input(23, p, origin + frame))
+            .collect();
+        good.step(&inputs).unwrap();
+    }
+    assert_eq!(diverged.tick(), good.tick());
+    assert_eq!(diverged.state_hash(), good.state_hash());
 }

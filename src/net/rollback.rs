@@ -6,7 +6,7 @@
 //!
 //! | GGRS | simulation |
 //! |---|---|
-//! | frame `f` | the world at tick `f` (a session starts on a fresh [`World`], tick 0) |
+//! | frame `f` | the world at tick `f` (a session starts on a fresh [`World`], tick 0; after a resync, at tick `origin + f`) |
 //! | `Config::Input` | [`Input`], one per player and tick (a peer's invalid input acts as no input: the simulation sanitizes every input) |
 //! | `Config::State` | [`Snapshot`] from [`World::snapshot`] |
 //! | `SaveGameState` | [`World::snapshot`], with [`World::state_hash`] as the checksum |
@@ -26,6 +26,23 @@
 //! controls' state, projectiles, debris) and the terrain's event log, the same on every
 //! machine.
 //!
+//! # Desyncs
+//!
+//! Peers that stop agreeing (a bug, a modified client, corrupted memory) are caught by
+//! comparing state hashes: [`session_builder`] starts every session with GGRS's desync
+//! detection on, comparing the checksum of every confirmed frame
+//! ([`DESYNC_INTERVAL`]), and a [`DesyncMonitor`] fed the session's events keeps a
+//! [`DesyncReport`] of the first divergent frame. Recovery is a full-state resync:
+//!
+//! 1. the peers stop the session (every peer sees the report);
+//! 2. the peer the match names as the authority (say handle 0) encodes
+//!    [`World::state`] of its last confirmed frame with
+//!    [`encode_state`](crate::net::state::encode_state) and sends it;
+//! 3. the other decodes it and calls [`World::resync`], which refuses a state of another
+//!    match or one altered on the way, changing nothing;
+//! 4. both start a new session whose frame 0 is the resynced tick, fulfilling its requests
+//!    with [`handle_requests_from`] and that tick as the origin.
+//!
 //! GGRS loads states at most its prediction window back (`max_prediction`, 8 frames
 //! unless the session builder sets another), and the world restores snapshots up to
 //! [`Settings::rollback_ticks`](crate::sim::Settings::rollback_ticks) back (128 by
@@ -37,6 +54,90 @@ use ggrs::{Frame, GgrsError, GgrsRequest, InputStatus};
 use thiserror::Error;
 
 use crate::sim::{Input, MAX_PLAYERS, SimError, Snapshot, World};
+
+/// Frames between two checksum comparisons in sessions from [`session_builder`]: every
+/// frame, so the first report names the first divergent frame (a checksum costs GGRS a
+/// few bytes per frame).
+pub const DESYNC_INTERVAL: u32 = 1;
+
+/// A session builder with desync detection on ([`DESYNC_INTERVAL`]); everything else is
+/// GGRS's default, for the caller to set (players, addresses, prediction window).
+pub fn session_builder() -> SessionBuilder {
+    SessionBuilder::new().with_desync_detection_mode(ggrs::DesyncDetection::On {
+        interval: DESYNC_INTERVAL,
+    })
+}
+
+/// A desync GGRS reported: the peers' state hashes differ at `frame`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DesyncReport {
+    /// The frame whose checksums differ.
+    pub frame: Frame,
+    /// The earliest frame that may be the first divergent one: the frame after the
+    /// previous comparison (the same as `frame` at [`DESYNC_INTERVAL`] 1).
+    pub since: Frame,
+    /// This peer's state hash at `frame`.
+    pub local: u64,
+    /// The remote peer's.
+    pub remote: u64,
+    /// The remote peer.
+    pub addr: SocketAddr,
+}
+
+/// Watches a session's events for desyncs and keeps the first one (see the
+/// [module documentation](self)).
+#[derive(Clone, Debug, Default)]
+pub struct DesyncMonitor {
+    first: Option<DesyncReport>,
+    count: u64,
+    interval: u32,
+}
+
+impl DesyncMonitor {
+    /// A monitor for a session that compares checksums every `interval` frames.
+    pub fn new(interval: u32) -> DesyncMonitor {
+        DesyncMonitor {
+            first: None,
+            count: 0,
+            interval: interval.max(1),
+        }
+    }
+
+    /// Looks at one session event; returns its report when it is a desync.
+    pub fn observe(&mut self, event: &ggrs::GgrsEvent<GgrsConfig>) -> Option<DesyncReport> {
+        let ggrs::GgrsEvent::DesyncDetected {
+            frame,
+            local_checksum,
+            remote_checksum,
+            addr,
+        } = *event
+        else {
+            return None;
+        };
+        let report = DesyncReport {
+            frame,
+            since: (frame - self.interval as i32 + 1).max(0),
+            local: local_checksum as u64,
+            remote: remote_checksum as u64,
+            addr,
+        };
+        self.count += 1;
+        if self.first.is_none_or(|f| frame < f.frame) {
+            self.first = Some(report);
+        }
+        Some(report)
+    }
+
+    /// The earliest divergent frame reported so far.
+    pub fn first(&self) -> Option<DesyncReport> {
+        self.first
+    }
+
+    /// Desyncs reported so far.
+    pub fn count(&self) -> u64 {
+        self.count
+    }
+}
 
 /// The GGRS parameters of a match: the simulation's [`Input`] and [`Snapshot`], peers
 /// addressed by UDP socket address.
@@ -103,8 +204,8 @@ pub fn checksum(world: &World) -> u128 {
     u128::from(world.state_hash())
 }
 
-fn check_frame(world: &World, frame: Frame) -> Result<(), SessionError> {
-    if i64::from(world.tick()) == i64::from(frame) {
+fn check_frame(world: &World, origin: u32, frame: Frame) -> Result<(), SessionError> {
+    if i64::from(world.tick()) == i64::from(origin) + i64::from(frame) {
         Ok(())
     } else {
         Err(SessionError::FrameMismatch {
@@ -124,15 +225,25 @@ fn check_frame(world: &World, frame: Frame) -> Result<(), SessionError> {
 /// Saves check that the world is at the tick GGRS names, loads that the snapshot is. A
 /// request that fails changes nothing.
 pub fn handle_request(world: &mut World, request: Request) -> Result<(), SessionError> {
+    handle_request_from(world, 0, request)
+}
+
+/// [`handle_request`] for a session whose frame 0 is the world's tick `origin` (a session
+/// started after a [`World::resync`]).
+pub fn handle_request_from(
+    world: &mut World,
+    origin: u32,
+    request: Request,
+) -> Result<(), SessionError> {
     match request {
         GgrsRequest::SaveGameState { cell, frame } => {
-            check_frame(world, frame)?;
+            check_frame(world, origin, frame)?;
             cell.save(frame, Some(world.snapshot()), Some(checksum(world)));
         }
         GgrsRequest::LoadGameState { cell, frame } => {
             let snapshot = cell.data().ok_or(SessionError::EmptyState { frame })?;
             // Checked before restoring: a refused load leaves the world as it was.
-            if i64::from(snapshot.tick()) != i64::from(frame) {
+            if i64::from(snapshot.tick()) != i64::from(origin) + i64::from(frame) {
                 return Err(SessionError::FrameMismatch {
                     frame,
                     tick: snapshot.tick(),
@@ -162,8 +273,17 @@ pub fn handle_request(world: &mut World, request: Request) -> Result<(), Session
 /// Fulfils GGRS requests on `world`, in order (as GGRS requires), stopping at the first
 /// that fails. See [`handle_request`].
 pub fn handle_requests(world: &mut World, requests: Vec<Request>) -> Result<(), SessionError> {
+    handle_requests_from(world, 0, requests)
+}
+
+/// [`handle_requests`] for a session whose frame 0 is the world's tick `origin`.
+pub fn handle_requests_from(
+    world: &mut World,
+    origin: u32,
+    requests: Vec<Request>,
+) -> Result<(), SessionError> {
     for request in requests {
-        handle_request(world, request)?;
+        handle_request_from(world, origin, request)?;
     }
     Ok(())
 }
@@ -255,6 +375,65 @@ mod tests {
             b.step(&[fire, Input::default()]).unwrap();
         }
         assert_eq!(a.state_hash(), b.state_hash());
+    }
+
+    #[test]
+    fn the_monitor_keeps_the_earliest_desync() {
+        let addr: SocketAddr = "127.0.0.1:7000".parse().unwrap();
+        let desync = |frame| ggrs::GgrsEvent::DesyncDetected {
+            frame,
+            local_checksum: 0xaa,
+            remote_checksum: 0xbb,
+            addr,
+        };
+        let mut m = DesyncMonitor::new(10);
+        assert_eq!(m.observe(&ggrs::GgrsEvent::NetworkResumed { addr }), None);
+        assert_eq!(m.first(), None);
+        let later = m.observe(&desync(40)).unwrap();
+        assert_eq!((later.frame, later.since), (40, 31));
+        m.observe(&desync(20));
+        m.observe(&desync(30));
+        let first = m.first().unwrap();
+        assert_eq!(
+            (first.frame, first.since, first.local, first.remote),
+            (20, 11, 0xaa, 0xbb)
+        );
+        assert_eq!(m.count(), 3);
+        // At the default interval the report names the divergent frame itself.
+        let mut every = DesyncMonitor::new(DESYNC_INTERVAL);
+        assert_eq!(every.observe(&desync(7)).map(|r| r.since), Some(7));
+    }
+
+    #[test]
+    fn sessions_resynced_at_a_tick_count_frames_from_it() {
+        let mut w = world(2);
+        for _ in 0..5 {
+            w.step(&[Input::default(); 2]).unwrap();
+        }
+        let cell = GameStateCell::<Snapshot>::default();
+        let save = |frame| GgrsRequest::SaveGameState {
+            cell: cell.clone(),
+            frame,
+        };
+        // Frame 0 of a session started at tick 5 is tick 5, not tick 0.
+        assert!(handle_request(&mut w, save(0)).is_err());
+        handle_request_from(&mut w, 5, save(0)).unwrap();
+        handle_request_from(
+            &mut w,
+            5,
+            advance(&[(Input::default(), InputStatus::Confirmed); 2]),
+        )
+        .unwrap();
+        handle_request_from(
+            &mut w,
+            5,
+            GgrsRequest::LoadGameState {
+                cell: cell.clone(),
+                frame: 0,
+            },
+        )
+        .unwrap();
+        assert_eq!(w.tick(), 5);
     }
 
     #[test]
