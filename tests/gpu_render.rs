@@ -28,8 +28,14 @@ use libtest_mimic::Failed;
 /// air and brick cells.
 fn cratered(level: &Level, count: usize) -> Terrain<Graph> {
     let mut terrain = level.terrain().expect("terrain");
+    crater(&mut terrain, level, count, 0x9e37_79b9_7f4a_7c15);
+    terrain
+}
+
+/// Applies `count` deterministic explosions and fills (seeded by `seed`) to `terrain`.
+fn crater(terrain: &mut Terrain<Graph>, level: &Level, count: usize, seed: u64) {
     let b = level.bounds();
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut state = seed;
     let mut next = || {
         state ^= state << 13;
         state ^= state >> 7;
@@ -43,7 +49,7 @@ fn cratered(level: &Level, count: usize) -> Terrain<Graph> {
         attempt += 1;
         let x = b.min.x + next() * (b.max.x - b.min.x);
         let mut y = b.max.y;
-        while y > b.min.y && craterfield::field2d::Sdf::distance(&terrain, Vec2::new(x, y)) > 0.0 {
+        while y > b.min.y && craterfield::field2d::Sdf::distance(terrain, Vec2::new(x, y)) > 0.0 {
             y -= 8.0;
         }
         let r = 10.0 + next() * 40.0;
@@ -60,7 +66,6 @@ fn cratered(level: &Level, count: usize) -> Terrain<Graph> {
             applied += 1;
         }
     }
-    terrain
 }
 
 fn palette(level: &Level) -> Vec<[u8; 3]> {
@@ -642,6 +647,40 @@ fn resizing_reallocates_and_matches_a_fresh_renderer(ctx: &GpuContext) -> TestRe
     Ok(())
 }
 
+/// A terrain whose event log is compacted between frames (its events renumbered, the
+/// dropped ones gone) draws what a fresh renderer of it draws: the mirror re-sends the
+/// renumbered lists and events.
+fn a_compacted_log_renders_as_a_fresh_upload(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let b = level.bounds();
+    let options = craterfield::field2d::TerrainOptions {
+        max_events: 40,
+        ..level.terrain_options()
+    };
+    let mut terrain =
+        Terrain::new(level.graph().clone(), b.min, b.max, options).map_err(|e| e.to_string())?;
+    let pal = palette(&level);
+    let cam = camera(Vec2::new(1400.0, 800.0), 2.0, 320, 180);
+    let render = RenderOptions::default();
+    let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, render.clone())
+        .map_err(|e| e.to_string())?;
+    for round in 0..6u64 {
+        crater(&mut terrain, &level, 60, 0x1234_5678 + round);
+        r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+        let kept = render_to_image(&r, cam.width, cam.height, Pipeline::Reduced)
+            .map_err(|e| e.to_string())?;
+        let fresh = gpu_image(ctx, &terrain, &pal, &cam, &render, Pipeline::Reduced)
+            .map_err(|e| e.to_string())?;
+        if kept != fresh {
+            return Err(format!("round {round}: the incrementally updated frame differs").into());
+        }
+    }
+    if terrain.history_complete() {
+        return Err("the log never compacted".into());
+    }
+    Ok(())
+}
+
 fn main() {
     common::gpu::run(&[
         (
@@ -675,6 +714,10 @@ fn main() {
         (
             "resizing_reallocates_and_matches_a_fresh_renderer",
             resizing_reallocates_and_matches_a_fresh_renderer,
+        ),
+        (
+            "a_compacted_log_renders_as_a_fresh_upload",
+            a_compacted_log_renders_as_a_fresh_upload,
         ),
     ]);
 }
