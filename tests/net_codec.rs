@@ -741,6 +741,49 @@ fn event_batches_are_bounded_on_both_sides() {
     );
 }
 
+/// A terrain snapshot bounds the replay work of a joiner the same way.
+#[test]
+fn terrain_snapshots_are_bounded_on_both_sides() {
+    let limits = DecodeLimits::default();
+    let max = limits.max_events as usize;
+    let snap = |n| TerrainSnapshot {
+        level_hash: 1,
+        tick: 9,
+        events: sim_like_events(n, 4),
+    };
+    let fits = snap(max);
+    assert_eq!(
+        TerrainSnapshot::decode(&fits.encode().unwrap()).unwrap(),
+        fits
+    );
+    let over = snap(max + 1);
+    let e = over.encode().unwrap_err().to_string();
+    assert!(
+        e.contains("events in a snapshot") && e.contains(&max.to_string()),
+        "{e}"
+    );
+    let raised = DecodeLimits {
+        max_events: max as u32 + 1,
+        ..limits
+    };
+    let bytes = over.encode_with_limits(&raised).unwrap();
+    let e = kind_of(TerrainSnapshot::decode(&bytes));
+    assert!(
+        matches!(
+            e.kind,
+            DecodeErrorKind::TooLarge {
+                what: "event count",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(
+        TerrainSnapshot::decode_with_limits(&bytes, &raised).unwrap(),
+        over
+    );
+}
+
 #[test]
 fn sim_events_cost_at_most_eight_bytes_each() {
     let events = sim_like_events(1_000, 3);

@@ -60,7 +60,9 @@ pub struct DecodeLimits {
     /// Most players in a replay (default [`MAX_PLAYERS`](crate::sim::MAX_PLAYERS); the
     /// format holds at most 8).
     pub max_players: u8,
-    /// Most events in a terrain snapshot (default 2^20).
+    /// Most events in a terrain snapshot (default 65,536: a joiner replays each, a few
+    /// seconds at worst; a longer history is sent as a world state, see
+    /// [`crate::net::state`]).
     pub max_events: u32,
     /// Most events in one event batch (default 4,096: at most a few tenths of a second of
     /// a receiver's time, where a 2^20-event batch cost 46 s).
@@ -76,7 +78,7 @@ impl Default for DecodeLimits {
             max_bytes: 256 << 20,
             max_ticks: 60 * 60 * 60 * 4,
             max_players: crate::sim::MAX_PLAYERS as u8,
-            max_events: 1 << 20,
+            max_events: 1 << 16,
             max_batch_events: 4096,
             max_state_bytes: 32 << 20,
         }

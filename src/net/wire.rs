@@ -127,7 +127,12 @@ impl TerrainSnapshot {
     /// Encodes the snapshot as a message (see the [module documentation](self)); fails
     /// if it holds more events than [`TerrainSnapshot::decode`] accepts.
     pub fn encode(&self) -> Result<Vec<u8>, EncodeError> {
-        let limit = DecodeLimits::default().max_events;
+        self.encode_with_limits(&DecodeLimits::default())
+    }
+
+    /// Encodes the snapshot for a reader with `limits`.
+    pub fn encode_with_limits(&self, limits: &DecodeLimits) -> Result<Vec<u8>, EncodeError> {
+        let limit = limits.max_events;
         if self.events.len() as u64 > u64::from(limit) {
             return Err(EncodeError::TooLarge {
                 what: "events in a snapshot",
