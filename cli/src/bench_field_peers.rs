@@ -4,7 +4,8 @@
 //!
 //! Inserts: per-explosion time (median, p95, p99, max, total). Queries, one thread, at 0,
 //! 1,000 and 10,000 explosions: single-point distance, distance + gradient and inside on
-//! points uniform in the level and near the ground, batch distances, and raycasts.
+//! points uniform in the level and near the ground, batch distances, and raycasts. Then
+//! the long row (`bench_field_long`): a million explosions into one terrain.
 
 use std::time::Instant;
 
@@ -59,6 +60,8 @@ pub(crate) struct Comparison {
     rays: usize,
     inserts: Vec<(String, Inserts)>,
     queries: Vec<Queries>,
+    /// One terrain after a million explosions (`bench_field_long`).
+    long_run: crate::bench_field_long::LongRun,
     /// Per checkpoint: the share of uniform points (more than one unit from craterfield's
     /// surface) where the polygon terrain's inside/outside disagrees with craterfield's.
     sign_mismatch: Vec<(usize, f64)>,
@@ -225,6 +228,14 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
             ("i_overlay, whole level".into(), Inserts::of(whole_us)),
         ],
         queries,
+        long_run: {
+            drop((terrain, chunked, whole));
+            eprintln!(
+                "  long run: {} explosions",
+                crate::bench_field_long::LONG_RUN
+            );
+            crate::bench_field_long::run(points)?
+        },
         sign_mismatch: mismatches,
     })
 }
@@ -288,4 +299,5 @@ pub(crate) fn print(c: &Comparison) {
             share * 100.0
         );
     }
+    crate::bench_field_long::print(&c.long_run);
 }

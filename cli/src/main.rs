@@ -6,6 +6,8 @@ mod bench;
 mod bench_eval;
 mod bench_fidelity;
 #[cfg(feature = "peers")]
+mod bench_field_long;
+#[cfg(feature = "peers")]
 mod bench_field_peers;
 mod bench_march3d;
 mod bench_render2d;
