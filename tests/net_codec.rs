@@ -94,6 +94,20 @@ fn kind_of<T: std::fmt::Debug>(r: Result<T, DecodeError>) -> DecodeError {
     r.expect_err("the corrupted input must be rejected")
 }
 
+/// `e` refuses an event count past the reader's limit.
+fn assert_event_count_too_large(e: &DecodeError) {
+    assert!(
+        matches!(
+            e.kind,
+            DecodeErrorKind::TooLarge {
+                what: "event count",
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
 // ---------------------------------------------------------------------------------------
 // Replays
 // ---------------------------------------------------------------------------------------
@@ -725,16 +739,7 @@ fn event_batches_are_bounded_on_both_sides() {
     };
     let bytes = wire::encode_events_with_limits(&over, &raised).unwrap();
     let e = kind_of(wire::decode_events(&bytes));
-    assert!(
-        matches!(
-            e.kind,
-            DecodeErrorKind::TooLarge {
-                what: "event count",
-                ..
-            }
-        ),
-        "{e}"
-    );
+    assert_event_count_too_large(&e);
     assert_eq!(
         wire::decode_events_with_limits(&bytes, &raised).unwrap(),
         over
@@ -768,16 +773,7 @@ fn terrain_snapshots_are_bounded_on_both_sides() {
     };
     let bytes = over.encode_with_limits(&raised).unwrap();
     let e = kind_of(TerrainSnapshot::decode(&bytes));
-    assert!(
-        matches!(
-            e.kind,
-            DecodeErrorKind::TooLarge {
-                what: "event count",
-                ..
-            }
-        ),
-        "{e}"
-    );
+    assert_event_count_too_large(&e);
     assert_eq!(
         TerrainSnapshot::decode_with_limits(&bytes, &raised).unwrap(),
         over
@@ -909,16 +905,7 @@ fn message_corruption_classes() {
     let e = kind_of(wire::decode_events(&framed(&[
         0x80, 0x80, 0x80, 0x80, 0x08,
     ])));
-    assert!(
-        matches!(
-            e.kind,
-            DecodeErrorKind::TooLarge {
-                what: "event count",
-                ..
-            }
-        ),
-        "{e}"
-    );
+    assert_event_count_too_large(&e);
     // 4,096 events (the limit) in a few bytes: more than the bytes left can hold.
     let e = kind_of(wire::decode_events(&framed(&[
         0x80, 0x20, 6, 0, 0, 1, 0, 2, 0, 0, 0,
