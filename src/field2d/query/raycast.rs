@@ -121,8 +121,8 @@ pub(crate) fn march<F: Sdf>(
     // fallback and to check over-relaxed steps.
     let mut clear: Option<(f32, f32)> = None;
     let mut relaxed = false;
-    // Dropped to 1 at the first step that fails, so that a march takes at most one
-    // evaluation more than plain sphere tracing would up to that point.
+    // Dropped to 1 at the first step that fails: from there the march is plain sphere
+    // tracing, and the failed step cost one evaluation.
     let mut relax = RELAX;
     loop {
         if steps >= opts.max_steps {
@@ -192,8 +192,8 @@ pub(crate) fn march<F: Sdf>(
 }
 
 /// Over-relaxation of the march's steps: each is `RELAX` times the clear gap, kept when
-/// the gap where it lands overlaps the last one. Fewer evaluations for grazing rays; a step
-/// that fails costs one evaluation more than the plain step.
+/// the gap where it lands overlaps the last one. Fewer evaluations for grazing rays; the
+/// first step that fails costs one evaluation, and the march steps plainly after it.
 const RELAX: f32 = 1.6;
 
 /// Bisects `[lo, hi]` (`g(lo) >= 0 > g(hi)`) for a point with `0 <= g < eps`, keeping the
