@@ -18,23 +18,23 @@ use crate::tails::{Tails, nearest_rank};
 pub(crate) const LONG_RUN: usize = 1_000_000;
 const LONG_SEED: u64 = 0x10_0000_5eed;
 
-/// Per-query distance times on one point set, in nanoseconds.
+/// Times of one kind (inserts in microseconds, queries in nanoseconds): how many, the
+/// median and tails, and p99.9, from one sort.
 #[derive(Serialize)]
-pub(crate) struct QueryTimes {
-    points: usize,
+pub(crate) struct Spread {
+    count: usize,
     #[serde(flatten)]
-    ns: Tails,
+    tails: Tails,
     p999: f64,
 }
 
-impl QueryTimes {
-    fn of(ns: Vec<f64>) -> QueryTimes {
-        let mut sorted = ns.clone();
-        sorted.sort_by(f64::total_cmp);
-        QueryTimes {
-            points: ns.len(),
-            p999: nearest_rank(&sorted, 0.999),
-            ns: Tails::of(ns),
+impl Spread {
+    fn of(mut times: Vec<f64>) -> Spread {
+        times.sort_by(f64::total_cmp);
+        Spread {
+            count: times.len(),
+            tails: Tails::of_sorted(&times),
+            p999: nearest_rank(&times, 0.999),
         }
     }
 }
@@ -43,11 +43,9 @@ impl QueryTimes {
 #[derive(Serialize)]
 pub(crate) struct LongRun {
     explosions: usize,
-    /// Per-insert microseconds (median, p95, p99, max) and their mean and p99.9.
-    #[serde(flatten)]
-    insert_us: Tails,
+    /// Per-insert microseconds, and their mean.
+    insert_us: Spread,
     insert_mean_us: f64,
-    insert_p999_us: f64,
     total_s: f64,
     /// Events the terrain keeps (the rest were compacted away) of those it applied, bricks,
     /// and the most events a cell lists.
@@ -55,8 +53,9 @@ pub(crate) struct LongRun {
     events_applied: u64,
     bricks: usize,
     max_cell_events: usize,
-    distance_uniform: QueryTimes,
-    distance_near: QueryTimes,
+    /// Per-query nanoseconds.
+    distance_uniform: Spread,
+    distance_near: Spread,
     /// The median cost of the two clock reads around each timed query, included in the
     /// query times above.
     clock_ns: f64,
@@ -91,20 +90,17 @@ pub(crate) fn run(points: usize) -> Result<LongRun, String> {
     std::hint::black_box(uniform.iter().map(|&p| terrain.distance(p)).sum::<f32>());
     std::hint::black_box(near.iter().map(|&p| terrain.distance(p)).sum::<f32>());
     let stats = terrain.stats();
-    let mut sorted = us.clone();
-    sorted.sort_by(f64::total_cmp);
     Ok(LongRun {
         explosions: LONG_RUN,
         insert_mean_us: us.iter().sum::<f64>() / us.len().max(1) as f64,
-        insert_p999_us: nearest_rank(&sorted, 0.999),
-        insert_us: Tails::of(us),
+        insert_us: Spread::of(us),
         total_s,
         events_kept: terrain.events().len(),
         events_applied: terrain.events_applied(),
         bricks: stats.bricks,
         max_cell_events: stats.max_cell_events,
-        distance_uniform: QueryTimes::of(each_timed(&uniform, |p| terrain.distance(p))),
-        distance_near: QueryTimes::of(each_timed(&near, |p| terrain.distance(p))),
+        distance_uniform: Spread::of(each_timed(&uniform, |p| terrain.distance(p))),
+        distance_near: Spread::of(each_timed(&near, |p| terrain.distance(p))),
         clock_ns: Tails::of(each_timed(&uniform, |p| p.x)).median,
         rss_before_mib: rss_before,
         rss_after_mib: process_memory_mib("VmRSS:"),
@@ -155,11 +151,11 @@ pub(crate) fn print(r: &LongRun) {
         "{:<28} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.1}",
         "insert us",
         r.insert_mean_us,
-        r.insert_us.median,
-        r.insert_us.p95,
-        r.insert_us.p99,
-        r.insert_p999_us,
-        r.insert_us.max
+        r.insert_us.tails.median,
+        r.insert_us.tails.p95,
+        r.insert_us.tails.p99,
+        r.insert_us.p999,
+        r.insert_us.tails.max
     );
     for (name, q) in [
         ("distance ns, uniform", &r.distance_uniform),
@@ -167,13 +163,13 @@ pub(crate) fn print(r: &LongRun) {
     ] {
         println!(
             "{:<28} {:>10} {:>10.0} {:>10.0} {:>10.0} {:>10.0} {:>10.0}",
-            format!("{name} ({})", q.points),
+            format!("{name} ({})", q.count),
             "-",
-            q.ns.median,
-            q.ns.p95,
-            q.ns.p99,
+            q.tails.median,
+            q.tails.p95,
+            q.tails.p99,
             q.p999,
-            q.ns.max
+            q.tails.max
         );
     }
     println!(

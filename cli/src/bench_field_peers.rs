@@ -219,6 +219,13 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
         &inputs,
         &mut mismatches,
     ));
+    // The long row on its own terrain, with the comparison's memory given back first.
+    drop((terrain, chunked, whole));
+    eprintln!(
+        "  long run: {} explosions",
+        crate::bench_field_long::LONG_RUN
+    );
+    let long_run = crate::bench_field_long::run(points)?;
     Ok(Comparison {
         points,
         rays,
@@ -228,14 +235,7 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
             ("i_overlay, whole level".into(), Inserts::of(whole_us)),
         ],
         queries,
-        long_run: {
-            drop((terrain, chunked, whole));
-            eprintln!(
-                "  long run: {} explosions",
-                crate::bench_field_long::LONG_RUN
-            );
-            crate::bench_field_long::run(points)?
-        },
+        long_run,
         sign_mismatch: mismatches,
     })
 }

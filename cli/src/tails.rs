@@ -18,11 +18,16 @@ impl Tails {
     /// middle one.
     pub(crate) fn of(mut times: Vec<f64>) -> Tails {
         times.sort_by(f64::total_cmp);
+        Tails::of_sorted(&times)
+    }
+
+    /// The same of times already in ascending order.
+    pub(crate) fn of_sorted(sorted: &[f64]) -> Tails {
         Tails {
-            median: times.get(times.len() / 2).copied().unwrap_or(f64::NAN),
-            p95: nearest_rank(&times, 0.95),
-            p99: nearest_rank(&times, 0.99),
-            max: times.last().copied().unwrap_or(f64::NAN),
+            median: sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN),
+            p95: nearest_rank(sorted, 0.95),
+            p99: nearest_rank(sorted, 0.99),
+            max: sorted.last().copied().unwrap_or(f64::NAN),
         }
     }
 }
