@@ -568,10 +568,18 @@ fn terrain_batches_match_single_points_and_brute_force() {
             pts.push(Vec2::new(i as f32 * cell, j as f32 * cell));
         }
     }
+    // Around the grid in its halo of coarse tiles, across the halo's edge (8,192 units
+    // past the grid) and beyond it, where the whole program answers.
+    for k in 0..720 {
+        let reach = [900.0, 3000.0, 8100.0, 8300.0, 9000.0, 40_000.0][k % 6];
+        let dir = Vec2::from_angle(k as f32 * 0.0087);
+        pts.push(Vec2::new(1900.0, 650.0) + dir * (1900.0 + reach));
+    }
     pts.extend([Vec2::new(f32::NAN, 3.0), Vec2::new(1.0, f32::NAN)]);
     let single_d: Vec<f32> = pts.iter().map(|&p| t.distance(p)).collect();
     let single_s: Vec<Sample> = pts.iter().map(|&p| t.sample(p)).collect();
-    for (k, &p) in pts.iter().enumerate().step_by(7) {
+    let every_seventh_and_the_far_ring = (0..pts.len()).filter(|k| k % 7 == 0 || *k >= 30_000);
+    for (k, p) in every_seventh_and_the_far_ring.map(|k| (k, pts[k])) {
         if t.cell_state(p).and_then(|s| s.brick()).is_none() {
             assert!(same(single_d[k], t.distance_brute_force(p)), "at {p}");
             assert!(

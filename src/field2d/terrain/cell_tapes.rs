@@ -5,7 +5,8 @@
 //! dropped, which changes no bit of any result there. They depend only on the base field
 //! and the cell's rectangle, both fixed for the terrain's life, so once built they never
 //! go stale: events, baking and tick changes alter what is applied after the base, never
-//! the base itself. Points outside the grid use the whole program.
+//! the base itself. Points outside the grid, where no event reaches, use coarser tiles of a
+//! halo around it the same way, and the whole program past the halo.
 //!
 //! Memory is bounded by [`MAX_CELL_TAPE_BYTES`]: a cell whose tapes come out the same as
 //! another's (or as the whole program's) shares them, and once the distinct tapes reach
@@ -124,11 +125,62 @@ impl Interned {
     }
 }
 
+/// Cells of the grid per side of one halo tile.
+const HALO_TILE_CELLS: u32 = 8;
+/// Halo tiles on each side of the grid: with 64-unit cells the halo reaches 8,192 units
+/// past the grid's edge, farther than a ray cast from inside a level usually goes.
+const HALO_DEPTH: u32 = 16;
+
+/// Coarse tiles around the grid for points outside it, where no event reaches: the base
+/// specialized to a tile makes a query there as cheap as in a cell, and a tile where the
+/// base is clamped needs no evaluation at all. Points past the halo use the whole program.
+#[derive(Clone, Debug)]
+struct Halo {
+    origin: Vec2,
+    tile: f32,
+    nx: u32,
+    ny: u32,
+    tiles: Vec<OnceLock<Arc<CellTape>>>,
+}
+
+impl Halo {
+    fn new(grid: &Grid) -> Halo {
+        let (nx, ny) = grid.dims();
+        let tile = grid.cell_size() * HALO_TILE_CELLS as f32;
+        let across = |n: u32| n.div_ceil(HALO_TILE_CELLS) + 2 * HALO_DEPTH;
+        let (nx, ny) = (across(nx), across(ny));
+        Halo {
+            origin: grid.origin() - Vec2::splat(tile * HALO_DEPTH as f32),
+            tile,
+            nx,
+            ny,
+            tiles: (0..nx as usize * ny as usize)
+                .map(|_| OnceLock::new())
+                .collect(),
+        }
+    }
+
+    /// The tile holding `p` and its lower-left corner, if the halo reaches `p`.
+    fn tile_of(&self, p: Vec2) -> Option<(usize, Vec2)> {
+        let f = (p - self.origin) / self.tile;
+        if !(f.x >= 0.0 && f.x < self.nx as f32 && f.y >= 0.0 && f.y < self.ny as f32) {
+            return None;
+        }
+        let (ix, iy) = ((f.x as u32).min(self.nx - 1), (f.y as u32).min(self.ny - 1));
+        let min = Vec2::new(
+            self.origin.x + ix as f32 * self.tile,
+            self.origin.y + iy as f32 * self.tile,
+        );
+        Some((iy as usize * self.nx as usize + ix as usize, min))
+    }
+}
+
 /// Every cell's plan, built lazily (thread-safe).
 #[derive(Clone, Debug)]
 pub(crate) struct CellTapes {
     program: Arc<Program>,
     cells: Vec<OnceLock<Arc<CellTape>>>,
+    halo: Halo,
     outside: OnceLock<Arc<CellTape>>,
     /// Shared by clones: equal tapes are interchangeable whichever terrain built them.
     interned: Arc<Interned>,
@@ -137,10 +189,11 @@ pub(crate) struct CellTapes {
 }
 
 impl CellTapes {
-    pub(super) fn new(program: Arc<Program>, cells: usize, band: f32) -> CellTapes {
+    pub(super) fn new(program: Arc<Program>, grid: &Grid, band: f32) -> CellTapes {
         CellTapes {
             program,
-            cells: (0..cells).map(|_| OnceLock::new()).collect(),
+            cells: (0..grid.cells.len()).map(|_| OnceLock::new()).collect(),
+            halo: Halo::new(grid),
             outside: OnceLock::new(),
             interned: Arc::default(),
             specialize: true,
@@ -153,7 +206,7 @@ impl CellTapes {
     pub(super) fn set_specialize(&mut self, on: bool) {
         if on != self.specialize {
             self.specialize = on;
-            for c in &mut self.cells {
+            for c in self.cells.iter_mut().chain(&mut self.halo.tiles) {
                 *c = OnceLock::new();
             }
         }
@@ -170,28 +223,44 @@ impl CellTapes {
         self.interned.bytes.load(Ordering::Relaxed)
     }
 
-    /// The plan of `cell` (`None`: outside the grid).
+    /// The plan of `cell` (`None`: outside the grid, the whole program).
     pub(super) fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellTape {
         match cell.and_then(|c| self.cells.get(c).map(|slot| (c, slot))) {
-            Some((c, slot)) if self.specialize => slot.get_or_init(|| {
-                // Padded: the f32 cell lookup may place a point a rounding error outside
-                // the cell's exact rectangle.
-                let s = grid.cell_size();
-                let min = grid.cell_min_f32(c);
-                let pad = s / 1024.0 + (min.abs().max_element() + s) / 1_048_576.0;
-                let max = min + Vec2::splat(s + pad);
-                let min = min - Vec2::splat(pad);
-                let whole = self.whole();
-                if self.bytes() >= MAX_CELL_TAPE_BYTES {
-                    return whole.clone();
-                }
-                let tape = CellTape::new(&self.program, Some((min, max)), self.band);
-                if tape.same_as(whole) {
-                    return whole.clone();
-                }
-                self.interned.share(tape).unwrap_or_else(|| whole.clone())
-            }),
+            Some((c, slot)) if self.specialize => {
+                slot.get_or_init(|| self.specialized(grid.cell_min_f32(c), grid.cell_size()))
+            }
             _ => self.whole(),
         }
+    }
+
+    /// The plan for `p` outside the grid: its halo tile's, with the tile's rectangle, or
+    /// the whole program's past the halo.
+    pub(super) fn outside(&self, p: Vec2) -> (&CellTape, Option<(Vec2, Vec2)>) {
+        match self.halo.tile_of(p) {
+            Some((i, min)) if self.specialize => {
+                let size = self.halo.tile;
+                let plan = self.halo.tiles[i].get_or_init(|| self.specialized(min, size));
+                (plan, Some((min, min + Vec2::splat(size))))
+            }
+            _ => (self.whole(), None),
+        }
+    }
+
+    /// The program specialized to the square of side `size` at `min` (shared with any
+    /// equal tape; the whole program's past the budget).
+    fn specialized(&self, min: Vec2, size: f32) -> Arc<CellTape> {
+        // Padded: the f32 lookup may place a point a rounding error outside the square.
+        let pad = size / 1024.0 + (min.abs().max_element() + size) / 1_048_576.0;
+        let max = min + Vec2::splat(size + pad);
+        let min = min - Vec2::splat(pad);
+        let whole = self.whole();
+        if self.bytes() >= MAX_CELL_TAPE_BYTES {
+            return whole.clone();
+        }
+        let tape = CellTape::new(&self.program, Some((min, max)), self.band);
+        if tape.same_as(whole) {
+            return whole.clone();
+        }
+        self.interned.share(tape).unwrap_or_else(|| whole.clone())
     }
 }

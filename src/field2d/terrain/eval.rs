@@ -5,6 +5,7 @@
 use glam::Vec2;
 
 use super::Terrain;
+use super::cell_tapes::{CellTape, CellTapes};
 use super::field::{Lift, apply_event};
 use super::grid::{CellState, MaterialSource};
 use crate::det::math::{Dual, max, nclamp};
@@ -13,6 +14,14 @@ use crate::field2d::sample::{MaterialId, Sample};
 use crate::field2d::sdf::Sdf;
 
 impl<F: Sdf> Terrain<F> {
+    /// The base's tapes at `p` in `cell` (`None`: outside the grid, its halo tile).
+    fn plan<'a>(&self, cell_tapes: &'a CellTapes, cell: Option<usize>, p: Vec2) -> &'a CellTape {
+        match cell {
+            Some(_) => cell_tapes.get(&self.grid, cell),
+            None => cell_tapes.outside(p).0,
+        }
+    }
+
     /// `clamp(base(p), -M, M)`.
     pub(super) fn base_clamped<N: Lift, const MAT: bool>(
         &self,
@@ -21,7 +30,7 @@ impl<F: Sdf> Terrain<F> {
     ) -> (N, MaterialId) {
         let m = self.options.band;
         if let Some(cell_tapes) = &self.cell_tapes {
-            let plan = cell_tapes.get(&self.grid, cell);
+            let plan = self.plan(cell_tapes, cell, p);
             if let Some(c) = plan.clamped {
                 let mat = if MAT || N::MATERIAL {
                     exec::point::material(&plan.material, p)
@@ -44,7 +53,7 @@ impl<F: Sdf> Terrain<F> {
         material: bool,
     ) -> (N, MaterialId) {
         match &self.cell_tapes {
-            Some(cell_tapes) => N::tape(cell_tapes.get(&self.grid, cell), p, material),
+            Some(cell_tapes) => N::tape(self.plan(cell_tapes, cell, p), p, material),
             None => N::base(&self.base, p, material),
         }
     }
@@ -52,9 +61,7 @@ impl<F: Sdf> Terrain<F> {
     /// The base's material at `p` (in `cell`), without its distance or gradient.
     fn base_material_at(&self, p: Vec2, cell: Option<usize>) -> MaterialId {
         match &self.cell_tapes {
-            Some(cell_tapes) => {
-                exec::point::material(&cell_tapes.get(&self.grid, cell).material, p)
-            }
+            Some(cell_tapes) => exec::point::material(&self.plan(cell_tapes, cell, p).material, p),
             None => self.base.distance_material(p).1,
         }
     }

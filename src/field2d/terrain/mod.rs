@@ -138,7 +138,7 @@ impl<F: Sdf> Terrain<F> {
         let grid = Grid::new(min, max, options.cell_size, options.brick_resolution)?;
         let cell_tapes = base
             .program()
-            .map(|program| CellTapes::new(program, grid.cells.len(), options.band));
+            .map(|program| CellTapes::new(program, &grid, options.band));
         Ok(Terrain {
             base,
             options,
