@@ -603,3 +603,134 @@ proptest! {
         })?;
     }
 }
+
+/// The terrain's clear runs ([`Sdf::clear_run`]) keep their promise: dense sampling along
+/// every run finds the field at or above the threshold, inside the grid (air cells, crater
+/// cells, bricks) and outside it (the base's halo and beyond). And they are long enough
+/// to matter.
+#[test]
+fn clear_runs_of_a_cratered_terrain_hold() {
+    let terrain = cratered_terrain(1, 400);
+    let mut state = 0x0c1e_a125_u64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((state >> 40) as f32) / (1u64 << 24) as f32
+    };
+    let (mut runs, mut proven) = (0usize, 0.0f64);
+    for k in 0..3000 {
+        let p = Vec2::new(-900.0 + next() * 2800.0, -900.0 + next() * 2300.0);
+        let dir = Vec2::from_angle(next() * std::f32::consts::TAU);
+        let above = [1e-3, 0.5, 4.0, 31.0][k % 4];
+        let run = terrain.clear_run(p, dir, above);
+        assert!(run.clear >= 0.0 && run.retry_after >= 0.0, "{run:?}");
+        runs += usize::from(run.clear > 0.0);
+        proven += f64::from(run.clear);
+        // A run of zero claims nothing.
+        let mut s = if run.clear > 0.0 {
+            0.0f32
+        } else {
+            f32::INFINITY
+        };
+        while s <= run.clear {
+            let q = p + dir * s;
+            let d = terrain.distance(q);
+            // The rounding of `p + dir * s` moves `q` by less than 1e-3 units.
+            assert!(
+                d >= above - 1e-3,
+                "run {run:?} from {p} along {dir} above {above}: the field is {d} at s = {s}"
+            );
+            s += 0.25;
+        }
+    }
+    assert!(runs > 1000, "only {runs} of 3000 runs proved anything");
+    assert!(proven > 200_000.0, "only {proven} units proven in all");
+}
+
+/// Counts the evaluations a march makes, and proves clear runs only when asked to.
+struct Counting<'a, F> {
+    field: &'a F,
+    skips: bool,
+    evaluations: std::cell::Cell<u64>,
+}
+
+impl<F: Sdf> Sdf for Counting<'_, F> {
+    fn distance(&self, p: Vec2) -> f32 {
+        self.evaluations.set(self.evaluations.get() + 1);
+        self.field.distance(p)
+    }
+    fn sample(&self, p: Vec2) -> Sample {
+        self.evaluations.set(self.evaluations.get() + 1);
+        self.field.sample(p)
+    }
+    fn lipschitz(&self) -> f32 {
+        self.field.lipschitz()
+    }
+    fn clear_run(&self, p: Vec2, dir: Vec2, above: f32) -> craterfield::field2d::ClearRun {
+        if self.skips {
+            self.field.clear_run(p, dir, above)
+        } else {
+            craterfield::field2d::ClearRun::NOTHING
+        }
+    }
+}
+
+/// Skipping the stretches the terrain proves clear gives the same answers (the same hit or
+/// miss, the same crossing up to the hit tolerance) for rays and swept circles, with far
+/// fewer field evaluations.
+#[test]
+fn skipping_clear_runs_keeps_every_answer_and_saves_evaluations() {
+    let terrain = cratered_terrain(2, 400);
+    let with = |skips| Counting {
+        field: &terrain,
+        skips,
+        evaluations: std::cell::Cell::new(0),
+    };
+    let (plain, skipping) = (with(false), with(true));
+    let mut state = 0x5eed_0017_u64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((state >> 40) as f32) / (1u64 << 24) as f32
+    };
+    let (mut compared, mut differ) = (0u32, 0u32);
+    for k in 0..2000 {
+        let origin = Vec2::new(-300.0 + next() * 1600.0, -300.0 + next() * 1100.0);
+        let dir = Vec2::from_angle(next() * std::f32::consts::TAU);
+        let length = 50.0 + next() * 2000.0;
+        let (a, b) = if k % 4 == 3 {
+            let radius = 1.0 + next() * 6.0;
+            let to = origin + dir * length;
+            let cast = |f: &Counting<_>| {
+                sweep_circle(f, origin, to, radius, &OPTS)
+                    .unwrap()
+                    .map(|h| h.toi * length)
+            };
+            (cast(&plain), cast(&skipping))
+        } else {
+            let cast =
+                |f: &Counting<_>| raycast(f, origin, dir, length, &OPTS).unwrap().map(|h| h.t);
+            (cast(&plain), cast(&skipping))
+        };
+        compared += 1;
+        let same = match (a, b) {
+            (None, None) => true,
+            (Some(a), Some(b)) => (a - b).abs() < 0.05,
+            _ => false,
+        };
+        differ += u32::from(!same);
+    }
+    // Grazing paths may meet a surface within the hit tolerance at a point one march
+    // samples and the other steps over; nothing else may differ.
+    assert!(
+        differ * 200 <= compared,
+        "{differ} of {compared} answers differ"
+    );
+    let (e0, e1) = (plain.evaluations.get(), skipping.evaluations.get());
+    assert!(
+        e1 * 10 < e0 * 6,
+        "{e1} evaluations with skips, {e0} without"
+    );
+}

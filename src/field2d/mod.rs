@@ -31,7 +31,7 @@ pub use graph::{Exactness, Graph, GraphLimits, NodeId, NodeInfo};
 pub use level::{DEFAULT_LEVEL_RON, Level, LevelFile, MAX_LEVEL_BYTES, MaterialDef, WorldBounds};
 pub use node::{Axis, Node, P2};
 pub use sample::{MaterialId, Sample};
-pub use sdf::Sdf;
+pub use sdf::{ClearRun, Sdf};
 pub use terrain::{
     CellState, CellView, Grid, GridStats, MaterialSource, Terrain, TerrainError, TerrainOptions,
     TerrainState,

@@ -27,6 +27,31 @@ pub trait Sdf {
     fn program(&self) -> Option<std::sync::Arc<crate::field2d::tape::Program>> {
         None
     }
+    /// How far the ray from `p` along the unit `dir` is proven to keep the field at or
+    /// above `above` (`> 0`), without evaluating it point by point: ray casts and sweeps
+    /// skip such stretches. The default proves nothing and is never asked again.
+    fn clear_run(&self, p: Vec2, dir: Vec2, above: f32) -> ClearRun {
+        let _ = (p, dir, above);
+        ClearRun::NOTHING
+    }
+}
+
+/// A stretch of a ray that a field proves clear ([`Sdf::clear_run`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClearRun {
+    /// The field is at least the threshold at every point `p + dir * s`, `0 <= s <= clear`.
+    pub clear: f32,
+    /// How much farther, past `clear`, asking again proves nothing new: the caller steps
+    /// on by other means until then (`0`: ask at the next point; infinite: never again).
+    pub retry_after: f32,
+}
+
+impl ClearRun {
+    /// Nothing proven, and nothing to gain by asking again.
+    pub const NOTHING: ClearRun = ClearRun {
+        clear: 0.0,
+        retry_after: f32::INFINITY,
+    };
 }
 
 impl<T: Sdf + ?Sized> Sdf for &T {
@@ -44,5 +69,8 @@ impl<T: Sdf + ?Sized> Sdf for &T {
     }
     fn program(&self) -> Option<std::sync::Arc<crate::field2d::tape::Program>> {
         (**self).program()
+    }
+    fn clear_run(&self, p: Vec2, dir: Vec2, above: f32) -> ClearRun {
+        (**self).clear_run(p, dir, above)
     }
 }

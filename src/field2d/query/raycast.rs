@@ -49,7 +49,9 @@ pub struct RayHit {
 /// are over-relaxed (1.6 times that radius) and kept only where the disc at the landing
 /// point overlaps the last one, so the two together clear the whole step; otherwise the
 /// march takes the plain step and steps plainly from then on. No crossing is ever skipped
-/// whatever the feature thickness. A hit is reported when `d / L < hit_epsilon`.
+/// whatever the feature thickness. A hit is reported when `d / L < hit_epsilon`. Stretches
+/// that the field proves clear ([`Sdf::clear_run`]: a terrain's cells of air, and the
+/// base's clearance outside its grid) are crossed without evaluating it.
 ///
 /// * An origin inside the terrain, or within `hit_epsilon` of it, is a hit at `t = 0` (whatever
 ///   `max_t`).
@@ -124,9 +126,19 @@ pub(crate) fn march<F: Sdf>(
     // Dropped to 1 at the first step that fails: from there the march is plain sphere
     // tracing, and the failed step cost one evaluation.
     let mut relax = RELAX;
+    let mut skips = Skips::new(radius, eps, l, opts.max_steps);
     loop {
         if steps >= opts.max_steps {
             return Err(QueryError::StepBudget { t, steps, max_t });
+        }
+        if !relaxed && let Some(next) = skips.ask(field, origin, dir, t) {
+            if next >= max_t {
+                return Ok(None);
+            }
+            // The whole skipped stretch is at least `eps` clear, its end included.
+            clear = Some((next, eps));
+            t = next;
+            continue;
         }
         let p = origin + dir * t;
         let finite = p.x.is_finite() && p.y.is_finite();
@@ -183,11 +195,63 @@ pub(crate) fn march<F: Sdf>(
             return Err(QueryError::NoProgress { t, point: p });
         }
         clear = Some((t, g));
+        // The disc clears the plain step: a stretch the field proves clear from its end
+        // is crossed at once.
+        if let Some(end) = skips.ask(field, origin, dir, next) {
+            if end >= max_t {
+                return Ok(None);
+            }
+            clear = Some((end, eps));
+            t = end;
+            continue;
+        }
         // Over-relaxed: a ray grazing a wall sees gaps that shrink slowly, and steps past
         // them by `RELAX` are checked at the next evaluation (Keinert et al. 2014).
         let far = (t + relax * g).min(max_t);
         relaxed = far > next;
         t = if relaxed { far } else { next };
+    }
+}
+
+/// The march's questions to the field about stretches it may skip ([`Sdf::clear_run`]):
+/// asked where the last answer said asking again may prove more, at most `max_steps` times.
+struct Skips {
+    /// The field value that keeps the gap at least `eps`, with room for the rounding of
+    /// `d / L - radius`; `NaN` when no threshold is meaningful.
+    above: f32,
+    /// The march asks again once `t` reaches this.
+    ask_at: f32,
+    /// The last `t` asked at: an answer that proves nothing is not asked again there.
+    asked: f32,
+    left: u32,
+}
+
+impl Skips {
+    fn new(radius: f32, eps: f32, l: f32, max_steps: u32) -> Skips {
+        let above = (radius + eps) * l * (1.0 + 1.0 / 65536.0);
+        Skips {
+            above: if above.is_finite() { above } else { f32::NAN },
+            ask_at: 0.0,
+            asked: f32::NAN,
+            left: max_steps,
+        }
+    }
+
+    /// The end of the stretch from `t` that the field proves clear, if it proves one.
+    fn ask<F: Sdf>(&mut self, field: &F, origin: Vec2, dir: Vec2, t: f32) -> Option<f32> {
+        // `ask_at` may be infinite (never again); `t` is finite here.
+        let due = t >= self.ask_at && t != self.asked;
+        if !due || self.left == 0 || self.above.is_nan() {
+            return None;
+        }
+        self.left -= 1;
+        self.asked = t;
+        let run = field.clear_run(origin + dir * t, dir, self.above);
+        let next = t + run.clear;
+        // A stretch too short to move `t` proves nothing the march can use.
+        let end = if run.clear > 0.0 && next > t { next } else { t };
+        self.ask_at = end + run.retry_after.max(0.0);
+        (end > t).then_some(end)
     }
 }
 

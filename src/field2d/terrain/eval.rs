@@ -11,7 +11,7 @@ use super::grid::{CellState, MaterialSource};
 use crate::det::math::{Dual, max, nclamp};
 use crate::field2d::exec;
 use crate::field2d::sample::{MaterialId, Sample};
-use crate::field2d::sdf::Sdf;
+use crate::field2d::sdf::{ClearRun, Sdf};
 
 impl<F: Sdf> Terrain<F> {
     /// The base's tapes at `p` in `cell` (`None`: outside the grid, its halo tile).
@@ -167,5 +167,9 @@ impl<F: Sdf> Sdf for Terrain<F> {
 
     fn lipschitz(&self) -> f32 {
         max(self.base.lipschitz(), 1.0)
+    }
+
+    fn clear_run(&self, p: Vec2, dir: Vec2, above: f32) -> ClearRun {
+        self.clear_run_from(p, dir, above)
     }
 }

@@ -80,6 +80,7 @@ mod limits;
 mod maintain;
 mod options;
 mod proof;
+mod ray;
 mod rollback;
 mod state;
 

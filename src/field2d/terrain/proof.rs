@@ -101,10 +101,43 @@ impl<F: Sdf> Terrain<F> {
     /// A caller asking about many rectangles of one cell reads the events once with
     /// [`Terrain::event_discs`] and asks [`Terrain::rect_sign_of`].
     pub fn rect_sign(&self, cell: usize, min: Vec2, max: Vec2, above: f32, below: f32) -> RectSign {
-        match self.event_discs(cell) {
-            Some(discs) => self.rect_sign_of(&discs, min, max, above, below),
-            None => RectSign::Unknown,
+        let Some(c) = self.grid.cells.get(cell) else {
+            return RectSign::Unknown;
+        };
+        // The same walk as `rect_sign_of`, reading the list in place: one question about a
+        // cell allocates nothing.
+        let discs = c.events.iter().filter_map(|&i| self.disc(i));
+        let start = self.proof_start(cell);
+        self.sign_over(discs, start, cell, min, max, above, Some(below))
+    }
+
+    /// Whether the field of cell `cell` is at least `above` (`0 < above <= M`) over the
+    /// rectangle `[min, max]`: [`Terrain::rect_sign`]'s `Above`, decided without any
+    /// geometry where the cell starts at least that high everywhere and lists carves
+    /// only (a carve never lowers the field, and the clamp keeps it at `M >= above`).
+    pub(crate) fn rect_above(&self, cell: usize, min: Vec2, max: Vec2, above: f32) -> bool {
+        let Some(c) = self.grid.cells.get(cell) else {
+            return false;
+        };
+        let start = self.proof_start(cell);
+        if let Start::Range(lo, _) = start
+            && lo >= above
+            && c.events.iter().all(|&i| {
+                self.events
+                    .get(i as usize)
+                    .is_some_and(|e| e.kind == EventKind::Carve)
+            })
+        {
+            return true;
         }
+        if let Start::Brick(_) = start {
+            // Reading a brick's samples under a ray's piece costs more than the steps it
+            // could save: bricks hold surfaces, and the march crosses them anyway.
+            return false;
+        }
+        let discs = c.events.iter().filter_map(|&i| self.disc(i));
+        let sign = self.sign_over(discs, start, cell, min, max, above, None);
+        sign == RectSign::Above
     }
 
     /// The events of cell `cell` at the terrain's tick as [`Terrain::rect_sign_of`] reads
@@ -112,21 +145,7 @@ impl<F: Sdf> Terrain<F> {
     /// `None`: no such cell. Valid until the terrain changes.
     pub fn event_discs(&self, cell: usize) -> Option<EventDiscs> {
         let c = self.grid.cells.get(cell)?;
-        let discs = c
-            .events
-            .iter()
-            .filter_map(|&i| {
-                let e = self.events.get(i as usize)?;
-                let r = e.radius_at(self.tick)?;
-                let o = e.center_f32();
-                Some(Disc {
-                    center: [f64::from(o.x), f64::from(o.y)],
-                    radius: f64::from(r),
-                    rim: f64::from(e.rim_f32()),
-                    carve: e.kind == EventKind::Carve,
-                })
-            })
-            .collect();
+        let discs = c.events.iter().filter_map(|&i| self.disc(i)).collect();
         Some(EventDiscs {
             cell,
             discs,
@@ -143,18 +162,66 @@ impl<F: Sdf> Terrain<F> {
         above: f32,
         below: f32,
     ) -> RectSign {
+        let discs_in_order = discs.discs.iter().copied();
+        let below = Some(below);
+        self.sign_over(
+            discs_in_order,
+            discs.start,
+            discs.cell,
+            min,
+            max,
+            above,
+            below,
+        )
+    }
+
+    /// Event `i` as the sign proof reads it at the terrain's tick; `None` when it is not
+    /// in effect (or not in the log).
+    fn disc(&self, i: u32) -> Option<Disc> {
+        let e = self.events.get(i as usize)?;
+        let r = e.radius_at(self.tick)?;
+        let o = e.center_f32();
+        Some(Disc {
+            center: [f64::from(o.x), f64::from(o.y)],
+            radius: f64::from(r),
+            rim: f64::from(e.rim_f32()),
+            carve: e.kind == EventKind::Carve,
+        })
+    }
+
+    /// The walk of [`Terrain::rect_sign`] over a cell's `discs` (in list order) and its
+    /// starting state `start`; without `below` it proves `Above` or nothing, and stops as
+    /// soon as that is decided.
+    #[allow(clippy::too_many_arguments)]
+    fn sign_over(
+        &self,
+        discs: impl DoubleEndedIterator<Item = Disc>,
+        start: Start,
+        cell: usize,
+        min: Vec2,
+        max: Vec2,
+        above: f32,
+        below: Option<f32>,
+    ) -> RectSign {
+        let ask_below = below.is_some();
+        let below = below.unwrap_or(-self.options.band);
         let rect = [
             [f64::from(min.x), f64::from(min.y)],
             [f64::from(max.x), f64::from(max.y)],
         ];
         let slack = 1.0e-3 + 1.0e-6 * f64::from(min.abs().max(max.abs()).max_element());
         let (above64, below64) = (f64::from(above), f64::from(below));
-        let widest = above64.max(-below64) + slack;
+        // Without `below`, only events within reach of `above` can decide anything.
+        let widest = if ask_below {
+            above64.max(-below64)
+        } else {
+            above64
+        } + slack;
         // Backwards: the last event that forces or breaks a sign decides it, and the
         // starting state decides what no event did.
         let (mut up, mut down) = (None, None);
-        for e in discs.discs.iter().rev() {
-            if up.is_some() && down.is_some() {
+        for e in discs.rev() {
+            if up.is_some() && (down.is_some() || !ask_below) {
                 break;
             }
             let (o, r, k) = (e.center, e.radius, e.rim);
@@ -190,11 +257,14 @@ impl<F: Sdf> Terrain<F> {
         }
         let (up, down) = match (up, down) {
             (Some(u), Some(d)) => (u, d),
+            (Some(u), None) if !ask_below => (u, false),
             (u, d) => {
-                let (lo, hi) = self.start_bounds(discs.start, discs.cell, min, max);
+                let (lo, hi) = self.start_bounds(start, cell, min, max);
                 (u.unwrap_or(lo >= above), d.unwrap_or(hi <= below))
             }
         };
+        // Unasked, `Below` is never claimed: the walk skipped the events that break it.
+        let down = down && ask_below;
         match (up, down) {
             (true, _) => RectSign::Above,
             (false, true) => RectSign::Below,
