@@ -604,20 +604,25 @@ proptest! {
     }
 }
 
-/// The terrain's clear runs ([`Sdf::clear_run`]) keep their promise: dense sampling along
-/// every run finds the field at or above the threshold, inside the grid (air cells, crater
-/// cells, bricks) and outside it (the base's halo and beyond). And they are long enough
-/// to matter.
-#[test]
-fn clear_runs_of_a_cratered_terrain_hold() {
-    let terrain = cratered_terrain(1, 400);
-    let mut state = 0x0c1e_a125_u64;
-    let mut next = move || {
+/// Uniform numbers in `[0, 1)` from `seed` (a 64-bit LCG's top bits).
+fn uniform_stream(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
         state = state
             .wrapping_mul(6_364_136_223_846_793_005)
             .wrapping_add(1_442_695_040_888_963_407);
         ((state >> 40) as f32) / (1u64 << 24) as f32
-    };
+    }
+}
+
+/// The terrain's clear runs ([`Sdf::clear_run`]) keep their promise: dense sampling along
+/// every run finds the field at or above the threshold, inside the grid (air and crater
+/// cells, up to the bricks beside them) and outside it (the base's halo and beyond). And
+/// they are long enough to matter.
+#[test]
+fn clear_runs_of_a_cratered_terrain_hold() {
+    let terrain = cratered_terrain(1, 400);
+    let mut next = uniform_stream(0x0c1e_a125);
     let (mut runs, mut proven) = (0usize, 0.0f64);
     for k in 0..3000 {
         let p = Vec2::new(-900.0 + next() * 2800.0, -900.0 + next() * 2300.0);
@@ -688,13 +693,7 @@ fn skipping_clear_runs_keeps_every_answer_and_saves_evaluations() {
         evaluations: std::cell::Cell::new(0),
     };
     let (plain, skipping) = (with(false), with(true));
-    let mut state = 0x5eed_0017_u64;
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        ((state >> 40) as f32) / (1u64 << 24) as f32
-    };
+    let mut next = uniform_stream(0x5eed_0017);
     let (mut compared, mut differ) = (0u32, 0u32);
     for k in 0..2000 {
         let origin = Vec2::new(-300.0 + next() * 1600.0, -300.0 + next() * 1100.0);

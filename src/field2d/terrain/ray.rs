@@ -1,7 +1,9 @@
 //! What a ray may skip ([`Sdf::clear_run`] for a terrain): inside the grid, the run of
 //! cells along the ray whose starting state and events prove the field above the
-//! threshold ([`Terrain::rect_sign`] over each cell's piece of the ray); outside it, where
-//! no event reaches, the clearance of the unclamped base up to the grid's edge.
+//! threshold (the sign proof of [`Terrain::rect_sign`], asked about `Above` only, over
+//! each cell's piece of the ray; brick cells are not asked); outside it, where no event
+//! reaches, whole halo tiles whose base is bounded above the threshold, else the
+//! clearance of the unclamped base, up to the grid's edge.
 //!
 //! A ray cast through a terrain spends most of its sphere-tracing steps crossing air that
 //! the clamp to the band holds at `+M`, `M / L` per step; one proof per cell replaces them.
@@ -50,15 +52,11 @@ impl<F: Sdf> Terrain<F> {
         let (mut ix, mut iy) = (cell as u32 % nx, cell as u32 / nx);
         let (p64, d64) = (p.as_dvec2(), dir.as_dvec2());
         let slack = point_slack(p64);
-        // Distance along the ray to the boundary of column `i` on its far side.
+        // Distance along the ray to the far side of column (or row) `i`, whose sides are
+        // where the cell lookup puts them, in `f32`.
         let edge = |i: u32, o: f32, p: f64, d: f64| -> f64 {
-            if d > 0.0 {
-                (f64::from(o + (i + 1) as f32 * size) - p) / d
-            } else if d < 0.0 {
-                (f64::from(o + i as f32 * size) - p) / d
-            } else {
-                f64::INFINITY
-            }
+            let side = |k: u32| f64::from(o + k as f32 * size);
+            axis_exit(p, d, side(i), side(i + 1))
         };
         let origin = self.grid.origin();
         let mut s = 0.0f64;
@@ -169,16 +167,18 @@ impl<F: Sdf> Terrain<F> {
 
 /// Distance along `d` from `p` (inside the rectangle `[min, max]`) to its far side.
 fn square_exit(p: DVec2, d: DVec2, min: DVec2, max: DVec2) -> f64 {
-    let side = |p: f64, d: f64, lo: f64, hi: f64| {
-        if d > 0.0 {
-            (hi - p) / d
-        } else if d < 0.0 {
-            (lo - p) / d
-        } else {
-            f64::INFINITY
-        }
-    };
-    side(p.x, d.x, min.x, max.x)
-        .min(side(p.y, d.y, min.y, max.y))
-        .max(0.0)
+    let x = axis_exit(p.x, d.x, min.x, max.x);
+    x.min(axis_exit(p.y, d.y, min.y, max.y)).max(0.0)
+}
+
+/// Distance along one axis's direction `d` from `p` to the side of `[lo, hi]` it moves
+/// towards (infinite when it does not move).
+fn axis_exit(p: f64, d: f64, lo: f64, hi: f64) -> f64 {
+    if d > 0.0 {
+        (hi - p) / d
+    } else if d < 0.0 {
+        (lo - p) / d
+    } else {
+        f64::INFINITY
+    }
 }
