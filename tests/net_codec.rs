@@ -277,14 +277,14 @@ fn wrong_magic_and_version_are_named() {
     assert!(matches!(e.kind, DecodeErrorKind::BadMagic { .. }), "{e}");
 
     let mut bad = bytes.clone();
-    bad[8..10].copy_from_slice(&2u16.to_le_bytes());
+    bad[8..10].copy_from_slice(&3u16.to_le_bytes());
     fix_crc(&mut bad);
     let e = kind_of(Replay::decode(&bad));
     assert_eq!(
         e.kind,
         DecodeErrorKind::UnsupportedVersion {
-            found: 2,
-            supported: 1
+            found: 3,
+            supported: 2
         }
     );
     assert_eq!((e.section.as_ref(), e.offset), ("version", 8));
@@ -636,6 +636,112 @@ fn played_match(level: &Level, ticks: u32) -> (Replay, World) {
         rec.record(&row, world.tick(), world.state_hash()).unwrap();
     }
     (rec.finish(world.tick(), world.state_hash()), world)
+}
+
+/// A match whose terrain is also edited from outside the simulation (a sandbox's brush):
+/// carves and fills applied between steps and recorded as the replay's edits.
+fn edited_match(level: &Level, ticks: u32) -> (Replay, World) {
+    let settings = Settings::default();
+    let mut world = World::new(level, settings, 2).unwrap();
+    let mut rec = Recorder::new(level_hash(level), settings, 2, 30).unwrap();
+    let ground = level.bounds().min + (level.bounds().max - level.bounds().min) * 0.5;
+    for (t, row) in scripted_rows(2, ticks, 5).iter().enumerate() {
+        let t = t as u32;
+        if t % 40 == 7 {
+            let at = ground + glam::Vec2::new(t as f32 * 3.0, 0.0);
+            let carve = Event::carve(at, 25.0).unwrap().at_tick(t);
+            let fill = Event::fill(at, 10.0, 0).unwrap().at_tick(t);
+            for e in [carve, fill] {
+                world.apply_event(e).unwrap();
+                rec.record_edit(e).unwrap();
+            }
+        }
+        world.step(row).unwrap();
+        rec.record(row, world.tick(), world.state_hash()).unwrap();
+    }
+    (rec.finish(world.tick(), world.state_hash()), world)
+}
+
+#[test]
+fn edits_round_trip_in_version_2_and_verify() {
+    let level = Level::default_level();
+    let (replay, world) = edited_match(&level, 200);
+    assert_eq!(replay.edits.len(), 10);
+    assert_eq!(replay.edits_at(47).len(), 2);
+    assert!(replay.edits_at(48).is_empty());
+    let bytes = replay.encode().unwrap();
+    assert_eq!(u16::from_le_bytes([bytes[8], bytes[9]]), replay::VERSION);
+    let back = Replay::decode(&bytes).unwrap();
+    assert_eq!(back, replay);
+    let report = replay::verify(&back, &level).unwrap();
+    assert_eq!(report.final_hash, world.state_hash());
+
+    // The edits are part of what the hashes prove: without one, the match diverges.
+    let mut lost = back.clone();
+    lost.edits.remove(4);
+    assert!(matches!(
+        replay::verify(&lost, &level),
+        Err(VerifyError::Diverged { .. })
+    ));
+
+    // Advancing tick by tick is what verify does.
+    let mut again = World::new(&level, back.settings, 2).unwrap();
+    for _ in 0..back.ticks() {
+        back.advance(&mut again).unwrap();
+    }
+    assert_eq!(again.state_hash(), world.state_hash());
+    assert!(back.advance(&mut again).is_err(), "past the last row");
+    assert_eq!(again.state_hash(), world.state_hash());
+
+    // A replay without edits is still written as version 1.
+    let plain = scripted_replay(2, 50, 3).encode().unwrap();
+    assert_eq!(
+        u16::from_le_bytes([plain[8], plain[9]]),
+        replay::VERSION_WITHOUT_EDITS
+    );
+}
+
+#[test]
+fn bad_edits_are_refused_on_every_side() {
+    let level = Level::default_level();
+    let (replay, _) = edited_match(&level, 100);
+    let carve = Event::carve(glam::Vec2::new(10.0, 10.0), 5.0).unwrap();
+
+    let mut rec = Recorder::new(1, Settings::default(), 1, 10).unwrap();
+    assert!(
+        rec.record_edit(carve.at_tick(3)).is_err(),
+        "not the current tick"
+    );
+    rec.record_edit(carve.at_tick(0)).unwrap();
+
+    for (what, edit) in [
+        ("past the end", carve.at_tick(100)),
+        ("decreasing", carve.at_tick(0)),
+    ] {
+        let mut bad = replay.clone();
+        bad.edits.push(edit);
+        assert!(bad.validate().is_err(), "{what}");
+        assert!(bad.encode().is_err(), "{what}");
+        assert!(
+            matches!(
+                replay::verify(&bad, &level),
+                Err(VerifyError::Inconsistent { .. })
+            ),
+            "{what}"
+        );
+    }
+
+    let bytes = replay.encode().unwrap();
+    let limits = DecodeLimits {
+        max_events: 3,
+        ..DecodeLimits::default()
+    };
+    assert_event_count_too_large(&kind_of(Replay::decode_with_limits(&bytes, &limits)));
+    assert!(replay.encode_with_limits(&limits).is_err());
+    // Cut anywhere in the edits section: an error, never a panic.
+    for n in (bytes.len() - 40)..bytes.len() {
+        assert!(Replay::decode(&bytes[..n]).is_err());
+    }
 }
 
 #[test]

@@ -215,8 +215,8 @@ fn simulate_to(file: &Path, tick: Option<u32>, level: &Level) -> Result<(World, 
         .map_err(|e| format!("{}: {e}", file.display()))?;
     let mut diverged = None;
     for t in 0..tick {
-        world
-            .step(replay.row(t))
+        replay
+            .advance(&mut world)
             .map_err(|e| format!("{}: tick {}: {e}", file.display(), t + 1))?;
         if diverged.is_none()
             && let Some(expected) = replay.hash_at(world.tick())

@@ -34,7 +34,7 @@ impl GpuContext {
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("craterfield"),
             required_features,
-            required_limits: limits_for(&adapter.limits()),
+            required_limits: device_limits(&adapter.limits()),
             ..wgpu::DeviceDescriptor::default()
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
@@ -56,9 +56,11 @@ impl GpuContext {
     }
 }
 
-/// Downlevel limits raised to the adapter's texture sizes, and to the storage buffers per
+/// The limits to request for craterfield's renderers on an adapter that offers `adapter`:
+/// downlevel limits raised to the adapter's texture sizes, and to the storage buffers per
 /// stage that the 2D renderer's refine passes bind (up to 8, where the adapter has them).
-fn limits_for(adapter: &wgpu::Limits) -> wgpu::Limits {
+/// A game creating its own device can request these (or more).
+pub fn device_limits(adapter: &wgpu::Limits) -> wgpu::Limits {
     let base = wgpu::Limits::downlevel_defaults().using_resolution(adapter.clone());
     wgpu::Limits {
         max_storage_buffers_per_shader_stage: adapter

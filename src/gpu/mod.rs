@@ -14,7 +14,7 @@ mod offscreen;
 mod timing;
 
 pub use cache::PipelineCache;
-pub use context::GpuContext;
+pub use context::{GpuContext, device_limits};
 pub use error::GpuError;
 pub(crate) use limits::{check_buffer, check_storage, check_texture};
 pub(crate) use offscreen::map_read;

@@ -20,6 +20,11 @@
 //! | 22 + H + I     | `S`  | hashes section                                     |
 //! | 22 + H + I + S | 4    | CRC-32 of bytes `0 .. 22 + H + I + S`, `u32 LE`    |
 //!
+//! Format version 2 adds a fourth section, the *edits*, before the checksum: `E`
+//! (`u32 LE`) and `E` bytes, and the CRC-32 then covers bytes `0 .. 26 + H + I + S + E`.
+//! A replay without edits is written as version 1, byte for byte what builds before
+//! version 2 wrote; both versions are read.
+//!
 //! **Header**: the postcard encoding of, in order, `level_hash: u64`, `settings:`
 //! [`Settings`] (its fields in declaration order, nested structs inline), `players: u8`
 //! (1 to 8), `hash_interval: u32` (at least 1) and `ticks: u32` (the number of input
@@ -49,6 +54,12 @@
 //! tick `T` is [`World::state_hash`] once [`World::tick`] is `T`; a [`Recorder`] stores one
 //! every `hash_interval` ticks and one for the final tick.
 //!
+//! **Edits** (version 2): terrain events applied from outside the simulation (a level
+//! editor's brush, a server's scripted hazards), as the event list of the destruction
+//! stream (see [`crate::net::wire`], "Event list"). Each event's `tick` is the tick it was
+//! applied at: before the step that leaves that tick, with [`World::apply_event`]. Ticks
+//! never decrease and are below the replay's tick count.
+//!
 //! Varints are described in `super::codec`.
 //!
 //! # Decoding
@@ -65,6 +76,7 @@ use thiserror::Error;
 use super::codec::{self, DecodeLimits, Reader, Writer};
 use super::error::{DecodeError, DecodeErrorKind, EncodeError};
 use crate::field2d::Level;
+use crate::field2d::event::Event;
 use crate::sim::input::Input;
 use crate::sim::settings::Settings;
 use crate::sim::{SimError, World};
@@ -72,8 +84,12 @@ use crate::sim::{SimError, World};
 /// The first eight bytes of every replay file.
 pub const MAGIC: &[u8; 8] = b"CRTRPLY\0";
 
-/// The format version this build writes and reads.
-pub const VERSION: u16 = 1;
+/// The newest format version this build writes and reads (with edits).
+pub const VERSION: u16 = 2;
+
+/// The format version of replays without edits, which this build writes for them and
+/// still reads.
+pub const VERSION_WITHOUT_EDITS: u16 = 1;
 
 /// Most players a replay can hold (the player mask of a run is one byte).
 pub const FORMAT_MAX_PLAYERS: u8 = 8;
@@ -109,6 +125,10 @@ pub struct Replay {
     pub inputs: Vec<Input>,
     /// `(tick, state hash)` pairs, ticks strictly increasing and at most [`Replay::ticks`].
     pub hashes: Vec<(u32, u64)>,
+    /// Terrain events applied from outside the simulation, in order: each before the step
+    /// that leaves tick `event.tick`. Ticks never decrease and are below
+    /// [`Replay::ticks`]; every event is valid.
+    pub edits: Vec<Event>,
 }
 
 /// The header section, as postcard encodes it.
@@ -142,6 +162,34 @@ impl Replay {
     /// The rows, one per tick.
     pub fn rows(&self) -> impl Iterator<Item = &[Input]> + '_ {
         self.inputs.chunks_exact(usize::from(self.players.max(1)))
+    }
+
+    /// The edits applied at tick `tick` (before its step), in order.
+    pub fn edits_at(&self, tick: u32) -> &[Event] {
+        let start = self.edits.partition_point(|e| e.tick < tick);
+        let end = self.edits.partition_point(|e| e.tick <= tick);
+        &self.edits[start..end]
+    }
+
+    /// Advances `world` by one recorded tick: applies the edits of [`World::tick`], then
+    /// steps with that tick's inputs. Fails, changing nothing, when the world is at or past
+    /// the end of the replay; a world built from another level or settings simply
+    /// diverges (compare [`World::state_hash`] with [`Replay::hash_at`]).
+    pub fn advance(&self, world: &mut World) -> Result<(), VerifyError> {
+        let tick = world.tick();
+        if tick >= self.ticks() {
+            return Err(VerifyError::Inconsistent {
+                detail: format!(
+                    "the world is at tick {tick}, past the replay's last input row ({} ticks)",
+                    self.ticks()
+                ),
+            });
+        }
+        for &e in self.edits_at(tick) {
+            world.apply_event(e)?;
+        }
+        world.step(self.row(tick))?;
+        Ok(())
     }
 
     /// The stored hash for `tick`, if there is one.
@@ -189,6 +237,10 @@ impl Replay {
                 max_players.into(),
             ));
         }
+        if self.edits.len() as u64 > u64::from(limits.max_events) {
+            let (n, max) = (self.edits.len() as u64, limits.max_events);
+            return Err(too_large("edits", n, max.into()));
+        }
         let header = Header {
             level_hash: self.level_hash,
             settings: self.settings,
@@ -200,10 +252,19 @@ impl Replay {
             postcard::to_stdvec(&header).map_err(|e| inconsistent(format!("header: {e}")))?;
         let mut w = Writer::default();
         w.bytes(MAGIC);
-        w.u16(VERSION);
+        w.u16(if self.edits.is_empty() {
+            VERSION_WITHOUT_EDITS
+        } else {
+            VERSION
+        });
         w.section(&header);
         w.section(&self.encode_inputs());
         w.section(&self.encode_hashes());
+        if !self.edits.is_empty() {
+            let mut edits = Writer::default();
+            super::wire::write_event_list(&mut edits, &self.edits)?;
+            w.section(&edits.buf);
+        }
         w.checksum();
         if w.buf.len() > limits.max_bytes {
             let (len, max) = (w.buf.len() as u64, limits.max_bytes as u64);
@@ -222,15 +283,23 @@ impl Replay {
         codec::check_len(bytes, limits)?;
         let mut r = Reader::new(bytes, 0, "file");
         codec::expect_magic(&mut r, MAGIC)?;
-        check_version(&mut r)?;
+        let version = check_version(&mut r)?;
         let mut header = r.section("header", limits.max_bytes)?;
         let mut inputs = r.section("inputs", limits.max_bytes)?;
         let mut hashes = r.section("hashes", limits.max_bytes)?;
+        let edits = match version {
+            VERSION_WITHOUT_EDITS => None,
+            _ => Some(r.section("edits", limits.max_bytes)?),
+        };
         codec::check_crc(bytes, r.offset())?;
         let h = decode_header(&mut header, limits)?;
         let players = usize::from(h.players);
         let inputs = decode_inputs(&mut inputs, players, h.ticks)?;
         let hashes = decode_hashes(&mut hashes, h.ticks)?;
+        let edits = match edits {
+            Some(mut r) => decode_edits(&mut r, h.ticks, limits)?,
+            None => Vec::new(),
+        };
         Ok(Replay {
             level_hash: h.level_hash,
             settings: h.settings,
@@ -238,6 +307,7 @@ impl Replay {
             hash_interval: h.hash_interval,
             inputs,
             hashes,
+            edits,
         })
     }
 
@@ -276,6 +346,22 @@ impl Replay {
         let increasing = self.hashes.windows(2).all(|w| w[0].0 < w[1].0);
         if !increasing || self.hashes.last().is_some_and(|h| h.0 > ticks) {
             return Err(format!("hash ticks must increase strictly up to {ticks}"));
+        }
+        self.validate_edits()
+    }
+
+    fn validate_edits(&self) -> Result<(), String> {
+        let mut previous = 0;
+        for (i, e) in self.edits.iter().enumerate() {
+            e.validate().map_err(|err| format!("edit {i}: {err}"))?;
+            if e.tick < previous || e.tick >= self.ticks() {
+                return Err(format!(
+                    "edit {i} at tick {}: edit ticks must not decrease and must be below {}",
+                    e.tick,
+                    self.ticks()
+                ));
+            }
+            previous = e.tick;
         }
         Ok(())
     }
@@ -349,11 +435,12 @@ fn write_row_change(w: &mut Writer, prev: &[Input], row: &[Input]) {
     }
 }
 
-fn check_version(r: &mut Reader<'_>) -> Result<(), DecodeError> {
+/// Reads the format version: [`VERSION_WITHOUT_EDITS`] or [`VERSION`].
+fn check_version(r: &mut Reader<'_>) -> Result<u16, DecodeError> {
     r.enter("version", None);
     let at = r.offset();
     let found = r.u16()?;
-    if found != VERSION {
+    if found != VERSION && found != VERSION_WITHOUT_EDITS {
         return Err(r.error_at(
             at,
             DecodeErrorKind::UnsupportedVersion {
@@ -362,7 +449,7 @@ fn check_version(r: &mut Reader<'_>) -> Result<(), DecodeError> {
             },
         ));
     }
-    Ok(())
+    Ok(found)
 }
 
 fn decode_header(r: &mut Reader<'_>, limits: &DecodeLimits) -> Result<Header, DecodeError> {
@@ -514,6 +601,22 @@ fn decode_hashes(r: &mut Reader<'_>, ticks: u32) -> Result<Vec<(u32, u64)>, Deco
     Ok(hashes)
 }
 
+/// The edits section: an event list whose ticks stay below the replay's tick count.
+fn decode_edits(
+    r: &mut Reader<'_>,
+    ticks: u32,
+    limits: &DecodeLimits,
+) -> Result<Vec<Event>, DecodeError> {
+    let edits = super::wire::read_event_list(r, limits.max_events)?;
+    if let Some((i, e)) = edits.iter().enumerate().find(|(_, e)| e.tick >= ticks) {
+        return Err(r.malformed(format!(
+            "edit {i} is at tick {}, not below the replay's {ticks} ticks",
+            e.tick
+        )));
+    }
+    Ok(edits)
+}
+
 /// Records a match as it is played, producing a [`Replay`].
 ///
 /// ```
@@ -567,6 +670,7 @@ impl Recorder {
                 hash_interval,
                 inputs: Vec::new(),
                 hashes: Vec::new(),
+                edits: Vec::new(),
             },
             since_hash: 0,
         })
@@ -609,6 +713,34 @@ impl Recorder {
             self.since_hash = 0;
             self.push_hash(tick_after, state_hash_after);
         }
+        Ok(())
+    }
+
+    /// Records an edit: a terrain event applied with [`World::apply_event`] before the
+    /// step that [`Recorder::record`] records next, so `e.tick` must be
+    /// [`Recorder::ticks`]. Errors, recording nothing, for an invalid event, another tick,
+    /// or past the default [`DecodeLimits`]' `max_events` edits.
+    pub fn record_edit(&mut self, e: Event) -> Result<(), EncodeError> {
+        e.validate().map_err(|source| EncodeError::InvalidEvent {
+            index: self.replay.edits.len(),
+            source,
+        })?;
+        if e.tick != self.ticks() {
+            return Err(inconsistent(format!(
+                "an edit at tick {} recorded while the replay is at tick {}",
+                e.tick,
+                self.ticks()
+            )));
+        }
+        let max = DecodeLimits::default().max_events;
+        if self.replay.edits.len() as u64 >= u64::from(max) {
+            return Err(EncodeError::TooLarge {
+                what: "edits",
+                value: u64::from(max) + 1,
+                limit: max.into(),
+            });
+        }
+        self.replay.edits.push(e);
         Ok(())
     }
 
@@ -686,8 +818,8 @@ pub enum VerifyError {
 
 /// Re-simulates `replay` on `level` and compares every stored hash.
 ///
-/// Checks the level hash first, then builds the world from the replay's settings, steps it
-/// once per input row and compares the stored hash of every tick the world reaches
+/// Checks the level hash first, then builds the world from the replay's settings, advances
+/// it once per input row ([`Replay::advance`]: the tick's edits, then its step) and compares the stored hash of every tick the world reaches
 /// (including its starting tick). Stops at the first mismatch.
 pub fn verify(replay: &Replay, level: &Level) -> Result<VerifyReport, VerifyError> {
     replay
@@ -698,8 +830,8 @@ pub fn verify(replay: &Replay, level: &Level) -> Result<VerifyReport, VerifyErro
     let mut pending = replay.hashes.iter().peekable();
     let mut checked = 0;
     checked += check_hashes(&mut pending, world.tick(), world.state_hash())?;
-    for row in replay.rows() {
-        world.step(row)?;
+    for _ in 0..replay.ticks() {
+        replay.advance(&mut world)?;
         checked += check_hashes(&mut pending, world.tick(), world.state_hash())?;
     }
     if let Some(&&(tick, _)) = pending.peek() {

@@ -365,7 +365,7 @@ fn quantum_shift(events: &[Event]) -> u8 {
     }
 }
 
-fn write_event_list(w: &mut Writer, events: &[Event]) -> Result<(), EncodeError> {
+pub(super) fn write_event_list(w: &mut Writer, events: &[Event]) -> Result<(), EncodeError> {
     check_events(events)?;
     w.varint(events.len() as u64);
     if events.is_empty() {
@@ -429,7 +429,10 @@ fn write_shape(w: &mut Writer, s: &Shape) {
     w.varint(s.material.into());
 }
 
-fn read_event_list(r: &mut Reader<'_>, max_events: u32) -> Result<Vec<Event>, DecodeError> {
+pub(super) fn read_event_list(
+    r: &mut Reader<'_>,
+    max_events: u32,
+) -> Result<Vec<Event>, DecodeError> {
     r.enter("event list", None);
     let at = r.offset();
     let count = r.varint_max("event count", max_events.into())?;
