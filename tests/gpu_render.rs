@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use common::gpu::TestResult;
 use craterfield::field2d::{Event, Graph, Level, Terrain};
 use craterfield::gpu::READBACK_FORMAT;
-use craterfield::gpu::{GpuContext, GpuError};
+use craterfield::gpu::{GpuContext, GpuError, Offscreen, Timestamps};
 use craterfield::render2d::gpu::TerrainRenderer;
 use craterfield::render2d::gpu::{Pipeline, render_to_image};
 use craterfield::render2d::twin::{render_refine, render_twin};
@@ -621,6 +621,51 @@ fn own_pass_and_srgb_match(
     Ok(())
 }
 
+/// Per-pass timestamps: four marks in order, and the same picture as an untimed render, in
+/// every mode (refine's compute passes sit between pass 1 and pass 3).
+fn per_pass_timestamps_are_ordered_and_draw_the_same(ctx: &GpuContext) -> TestResult {
+    let Some(stamps) = Timestamps::new(&ctx.device, &ctx.queue, 2) else {
+        return Err("this adapter has no timestamp queries: the test cannot time passes".into());
+    };
+    let level = Level::default_level();
+    let terrain = cratered(&level, 60);
+    let pal = palette(&level);
+    let b = level.bounds();
+    let cam = camera((b.min + b.max) * 0.5, 4.0, 320, 180);
+    for mode in Reconstruction::ALL {
+        let options = RenderOptions {
+            reconstruction: mode,
+            ..RenderOptions::default()
+        };
+        let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options)
+            .map_err(|e| e.to_string())?;
+        r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+        let target =
+            Offscreen::new(&ctx.device, cam.width, cam.height).map_err(|e| e.to_string())?;
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let (set, index) = stamps.pair(0).ok_or("no pair 0")?;
+        r.render_timed_passes(&mut encoder, target.view(), set, index)
+            .map_err(|e| e.to_string())?;
+        stamps.encode_resolve(&mut encoder);
+        target.encode_copy(&mut encoder);
+        ctx.queue.submit([encoder.finish()]);
+        let timed = target.read(&ctx.device).map_err(|e| e.to_string())?;
+        let marks = stamps
+            .read_marks_ms(&ctx.device)
+            .map_err(|e| e.to_string())?;
+        let name = mode.name();
+        if marks.len() != 4 || marks.windows(2).any(|w| w[1] < w[0]) {
+            return Err(format!("{name}: timestamps out of order: {marks:?}").into());
+        }
+        let untimed = render_to_image(&r, cam.width, cam.height, Pipeline::Reduced)
+            .map_err(|e| e.to_string())?;
+        if timed != untimed {
+            return Err(format!("{name}: the timed render differs from render()").into());
+        }
+    }
+    Ok(())
+}
+
 fn resizing_reallocates_and_matches_a_fresh_renderer(ctx: &GpuContext) -> TestResult {
     let level = Level::default_level();
     let terrain = cratered(&level, 100);
@@ -710,6 +755,10 @@ fn main() {
         (
             "draws_into_the_callers_render_pass_and_srgb_targets",
             draws_into_the_callers_render_pass_and_srgb_targets,
+        ),
+        (
+            "per_pass_timestamps_are_ordered_and_draw_the_same",
+            per_pass_timestamps_are_ordered_and_draw_the_same,
         ),
         (
             "resizing_reallocates_and_matches_a_fresh_renderer",

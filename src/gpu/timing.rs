@@ -58,6 +58,19 @@ impl Timestamps {
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, self.resolve.size());
     }
 
+    /// Every timestamp's time in milliseconds after the first one, after the resolve was
+    /// submitted (for passes timed back to back, where the gaps matter too).
+    pub fn read_marks_ms(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
+        map_read(device, &self.read, |data| {
+            let ticks: &[u64] = bytemuck::cast_slice(data);
+            let first = ticks.first().copied().unwrap_or(0);
+            ticks
+                .iter()
+                .map(|t| t.wrapping_sub(first) as f64 * self.period_ns / 1.0e6)
+                .collect()
+        })
+    }
+
     /// Milliseconds of every pair, after the resolve was submitted.
     pub fn read_ms(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
         map_read(device, &self.read, |data| {

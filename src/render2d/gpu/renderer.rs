@@ -613,7 +613,7 @@ impl TerrainRenderer {
     fn encode_prepasses_timed(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        timestamp_start: Option<(&wgpu::QuerySet, u32)>,
+        pass1_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<(), GpuError> {
         let (prepared, bind, lowres) = self.ready()?;
         let pipelines = self
@@ -628,7 +628,7 @@ impl TerrainRenderer {
             &pipelines.sdf,
             &bind.field,
             l,
-            timestamp_start,
+            pass1_writes,
         );
         if self.options.reconstruction == Reconstruction::Refine {
             return self.encode_refine(encoder, pipelines, bind);
@@ -732,13 +732,45 @@ impl TerrainRenderer {
         target: &wgpu::TextureView,
         timestamps: Option<(&wgpu::QuerySet, u32)>,
     ) -> Result<(), GpuError> {
-        self.encode_prepasses_timed(encoder, timestamps)?;
+        let start = timestamps.map(|(set, i)| wgpu::RenderPassTimestampWrites {
+            query_set: set,
+            beginning_of_pass_write_index: Some(i),
+            end_of_pass_write_index: None,
+        });
+        self.encode_prepasses_timed(encoder, start)?;
         let end = timestamps.map(|(set, i)| wgpu::RenderPassTimestampWrites {
             query_set: set,
             beginning_of_pass_write_index: None,
             end_of_pass_write_index: Some(i + 1),
         });
         let mut pass = begin_pass(encoder, "craterfield upsample", target, end);
+        self.draw(&mut pass)
+    }
+
+    /// [`Self::render`] writing four timestamps into `query_set` from `index`: the
+    /// beginning and end of pass 1 (`index`, `index + 1`) and of pass 3 (`index + 2`,
+    /// `index + 3`). Pass 2 (the reconstruction, or mode refine's classification and exact
+    /// passes) lies between the second and the third. Read them with
+    /// [`Timestamps::read_marks_ms`](crate::gpu::Timestamps::read_marks_ms) (two pairs).
+    pub fn render_timed_passes(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        query_set: &wgpu::QuerySet,
+        index: u32,
+    ) -> Result<(), GpuError> {
+        let writes = |at: u32| wgpu::RenderPassTimestampWrites {
+            query_set,
+            beginning_of_pass_write_index: Some(at),
+            end_of_pass_write_index: Some(at + 1),
+        };
+        self.encode_prepasses_timed(encoder, Some(writes(index)))?;
+        let mut pass = begin_pass(
+            encoder,
+            "craterfield upsample",
+            target,
+            Some(writes(index + 2)),
+        );
         self.draw(&mut pass)
     }
 
@@ -831,13 +863,8 @@ fn lowres_pass(
     pipeline: &wgpu::RenderPipeline,
     bind: &wgpu::BindGroup,
     lattice: &Lattice,
-    timestamp_start: Option<(&wgpu::QuerySet, u32)>,
+    writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
 ) {
-    let writes = timestamp_start.map(|(set, i)| wgpu::RenderPassTimestampWrites {
-        query_set: set,
-        beginning_of_pass_write_index: Some(i),
-        end_of_pass_write_index: None,
-    });
     let mut pass = begin_pass(encoder, label, target, writes);
     pass.set_viewport(0.0, 0.0, lattice.cols as f32, lattice.rows as f32, 0.0, 1.0);
     pass.set_pipeline(pipeline);
