@@ -12,7 +12,7 @@ use std::path::PathBuf;
 
 use common::gpu::TestResult;
 use craterfield::emit::plan3d::Plan;
-use craterfield::gpu::GpuContext;
+use craterfield::gpu::{GpuContext, Timestamps};
 use craterfield::march3d::compile::{CompileOptions, emit};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::gpu::{MarchGpuError, Marcher};
@@ -197,8 +197,9 @@ fn the_cache_hits_on_an_unchanged_key_and_misses_on_a_new_one(ctx: &GpuContext) 
     Ok(())
 }
 
-/// A storage texture of the caller's, rendered through `encode` on the caller's encoder,
-/// holds the same pixels as `render_to_rgba`; other formats are refused.
+/// A storage texture of the caller's, rendered through `encode_timed` on the caller's
+/// encoder, holds the same pixels as `render_to_rgba`, with the pass's two timestamps in
+/// order where the device has them; other formats are refused.
 fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
     let (w, h) = (40, 24);
     let mut marcher = Marcher::new(&ctx.device, &ctx.queue)?;
@@ -226,7 +227,12 @@ fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
     let mut encoder = ctx
         .device
         .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    marcher.encode(&mut encoder, &plan, &camera, &view)?;
+    let stamps = Timestamps::new(&ctx.device, &ctx.queue, 1);
+    let pair = stamps.as_ref().and_then(|s| s.pair(0));
+    marcher.encode_timed(&mut encoder, &plan, &camera, &view, pair)?;
+    if let Some(s) = &stamps {
+        s.encode_resolve(&mut encoder);
+    }
     let row = (w * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("caller's readback"),
@@ -257,7 +263,11 @@ fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
         .chunks(row as usize)
         .flat_map(|line| line[..(w * 4) as usize].to_vec())
         .collect();
-    assert_eq!(got, expected, "encode() and render_to_rgba() differ");
+    assert_eq!(got, expected, "encode_timed() and render_to_rgba() differ");
+    if let Some(s) = &stamps {
+        let ms = s.read_ms(&ctx.device)?;
+        assert!(ms.len() == 1 && (0.0..60_000.0).contains(&ms[0]), "pass time {ms:?}");
+    }
     let srgb = make(
         wgpu::TextureFormat::Rgba8UnormSrgb,
         wgpu::TextureUsages::COPY_SRC,

@@ -110,6 +110,20 @@ impl Marcher {
         camera: &Camera3d,
         target: &wgpu::TextureView,
     ) -> Result<(), MarchGpuError> {
+        self.encode_timed(encoder, plan, camera, target, None)
+    }
+
+    /// [`encode`](Self::encode) writing timestamps at the beginning (`index`) and end
+    /// (`index + 1`) of the pass into `query_set`, so the caller can read the pass's GPU
+    /// time (see [`Timestamps`]).
+    pub fn encode_timed(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: &Plan,
+        camera: &Camera3d,
+        target: &wgpu::TextureView,
+        timestamps: Option<(&wgpu::QuerySet, u32)>,
+    ) -> Result<(), MarchGpuError> {
         let texture = target.texture();
         if texture.format() != TARGET_FORMAT
             || !texture
@@ -128,7 +142,7 @@ impl Marcher {
             target,
             texture.width(),
             texture.height(),
-            false,
+            timestamps,
         );
         Ok(())
     }
@@ -173,8 +187,8 @@ impl Marcher {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("craterfield march3d"),
             });
-        let timed = self.timestamps.is_some();
-        self.encode_pass(&mut encoder, plan.key, target.view(), width, height, timed);
+        let stamps = self.timestamps.as_ref().and_then(|ts| ts.pair(0));
+        self.encode_pass(&mut encoder, plan.key, target.view(), width, height, stamps);
         if let Some(ts) = &self.timestamps {
             ts.encode_resolve(&mut encoder);
             target.encode_copy(&mut encoder);
@@ -252,7 +266,7 @@ impl Marcher {
         target: &wgpu::TextureView,
         width: u32,
         height: u32,
-        timed: bool,
+        timestamps: Option<(&wgpu::QuerySet, u32)>,
     ) {
         let Some(pipeline) = self.pipelines.peek(key) else {
             unreachable!("prepare compiled the pipeline of this key");
@@ -271,12 +285,8 @@ impl Marcher {
                 },
             ],
         });
-        let timestamp_writes = self
-            .timestamps
-            .as_ref()
-            .filter(|_| timed)
-            .and_then(|ts| ts.pair(0))
-            .map(|(query_set, first)| wgpu::ComputePassTimestampWrites {
+        let timestamp_writes =
+            timestamps.map(|(query_set, first)| wgpu::ComputePassTimestampWrites {
                 query_set,
                 beginning_of_pass_write_index: Some(first),
                 end_of_pass_write_index: Some(first + 1),
