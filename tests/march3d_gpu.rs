@@ -266,7 +266,10 @@ fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
     assert_eq!(got, expected, "encode_timed() and render_to_rgba() differ");
     if let Some(s) = &stamps {
         let ms = s.read_ms(&ctx.device)?;
-        assert!(ms.len() == 1 && (0.0..60_000.0).contains(&ms[0]), "pass time {ms:?}");
+        assert!(
+            ms.len() == 1 && (0.0..60_000.0).contains(&ms[0]),
+            "pass time {ms:?}"
+        );
     }
     let srgb = make(
         wgpu::TextureFormat::Rgba8UnormSrgb,
