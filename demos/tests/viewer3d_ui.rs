@@ -34,6 +34,10 @@ fn main() {
             default_view_renders_sky_and_ground,
         ),
         (
+            "the_view_shows_the_marchers_bytes",
+            the_view_shows_the_marchers_bytes,
+        ),
+        (
             "optimization_switch_recompiles_the_plan",
             optimization_switch_recompiles_the_plan,
         ),
@@ -71,6 +75,43 @@ fn viewer(source: SceneSource) -> Harness<'static, Viewer3dApp> {
 
 fn builtin(name: &str) -> SceneSource {
     SceneSource::Builtin(name.into())
+}
+
+/// What the panel shows are the marcher's own bytes, colours included: the texture reaches
+/// egui's gamma-space blending unchanged (a view that decoded sRGB would darken it).
+fn the_view_shows_the_marchers_bytes() -> TestResult {
+    let mut harness = viewer(builtin(CHEAP_WORLD));
+    harness.set_render_cursor(false);
+    harness.run();
+    let window = harness.render()?;
+    let app = harness.state();
+    let (Some(plan), Some(camera), Some(rect), Some([w, h])) =
+        (app.plan(), app.camera(), app.image_rect(), app.image_size())
+    else {
+        return Err("the viewer drew nothing".into());
+    };
+    let shown =
+        image::imageops::crop_imm(&window, rect.left() as u32, rect.top() as u32, w, h).to_image();
+    let ctx = craterfield::gpu::GpuContext::new().map_err(|e| e.to_string())?;
+    let mut marcher = craterfield::march3d::gpu::Marcher::new(&ctx.device, &ctx.queue)
+        .map_err(|e| e.to_string())?;
+    let bytes = marcher
+        .render_to_rgba(plan, &camera, w, h)
+        .map_err(|e| e.to_string())?;
+    let off = shown
+        .as_raw()
+        .chunks(4)
+        .zip(bytes.chunks(4))
+        .filter(|(a, b)| a[..3].iter().zip(&b[..3]).any(|(x, y)| x.abs_diff(*y) > 6))
+        .count();
+    let fraction = off as f64 / f64::from(w * h);
+    ensure(
+        fraction < 0.01,
+        format!(
+            "{:.1}% of the view differs from the marcher's bytes",
+            fraction * 100.0
+        ),
+    )
 }
 
 /// Opens the builtin `name` through the panel's scene picker.

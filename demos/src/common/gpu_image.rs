@@ -1,5 +1,10 @@
 //! [`GpuImage`]: a texture the library's renderers draw into, registered with egui's wgpu
 //! renderer so a panel shows it as an image. It follows the panel's size in pixels.
+//!
+//! egui's wgpu renderer keeps its own textures as `Rgba8Unorm` holding sRGB-encoded bytes
+//! and blends in that gamma space, so it must sample ours the same way: through an
+//! `Rgba8Unorm` view, which hands the shader the stored bytes as they are. (An sRGB view
+//! would decode them to linear values, and egui would show the picture too dark.)
 
 use egui_wgpu::RenderState;
 
@@ -12,15 +17,14 @@ pub struct GpuImage {
 }
 
 impl GpuImage {
-    /// Keeps `slot` a `size` texture of `format` usable as `usage` (plus sampling and
-    /// copies), registering it with egui; egui samples it through a view of `sampled`
-    /// (the sRGB form of a storage texture's format, so its bytes read as sRGB colours).
+    /// Keeps `slot` a `size` texture of `format` (`Rgba8Unorm`, or `Rgba8UnormSrgb` for a
+    /// renderer that writes linear values), usable as `usage` plus sampling and copies, and
+    /// registered with egui.
     pub fn ensure<'a>(
         slot: &'a mut Option<GpuImage>,
         rs: &RenderState,
         size: [u32; 2],
         format: wgpu::TextureFormat,
-        sampled: wgpu::TextureFormat,
         usage: wgpu::TextureUsages,
     ) -> &'a GpuImage {
         let fits = slot.as_ref().is_some_and(|img| {
@@ -32,7 +36,7 @@ impl GpuImage {
             if let Some(old) = slot.take() {
                 rs.renderer.write().free_texture(&old.id);
             }
-            *slot = Some(GpuImage::new(rs, size, format, sampled, usage));
+            *slot = Some(GpuImage::new(rs, size, format, usage));
         }
         slot.as_ref().expect("the image was just made")
     }
@@ -41,10 +45,10 @@ impl GpuImage {
         rs: &RenderState,
         size: [u32; 2],
         format: wgpu::TextureFormat,
-        sampled: wgpu::TextureFormat,
         usage: wgpu::TextureUsages,
     ) -> GpuImage {
-        let view_formats: &[wgpu::TextureFormat] = if sampled == format { &[] } else { &[sampled] };
+        const SHOWN: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+        let view_formats: &[wgpu::TextureFormat] = if format == SHOWN { &[] } else { &[SHOWN] };
         let texture = rs.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("craterfield demo image"),
             size: wgpu::Extent3d {
@@ -60,9 +64,9 @@ impl GpuImage {
             view_formats,
         });
         let target = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        // Only sampled: an sRGB view of a storage texture may not inherit the storage use.
+        // Only sampled: egui's view needs no storage or render use.
         let shown = texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(sampled),
+            format: Some(SHOWN),
             usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
             ..Default::default()
         });

@@ -14,8 +14,9 @@ use egui_wgpu::RenderState;
 
 use crate::common::GpuImage;
 
-/// The renderer's target: sRGB, so egui samples it as the colours it was drawn with.
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The renderer's target. The renderer writes sRGB-encoded bytes into a plain `Rgba8Unorm`
+/// target, which is what egui samples (see `GpuImage`).
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// What the last frame cost.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -96,7 +97,7 @@ impl TerrainView {
         let started = Instant::now();
         let size = [camera.width, camera.height];
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let image = GpuImage::ensure(&mut self.image, rs, size, FORMAT, FORMAT, usage);
+        let image = GpuImage::ensure(&mut self.image, rs, size, FORMAT, usage);
         let prepare = self
             .renderer
             .prepare(terrain, palette, camera)

@@ -1,9 +1,8 @@
 //! [`MarchView`]: the GPU raymarcher drawing the plan straight into the texture the central
 //! panel shows, on eframe's own device, and the time the pass took.
 //!
-//! The marcher writes an `Rgba8Unorm` storage texture of gamma-encoded bytes; egui samples
-//! the same texture through an `Rgba8UnormSrgb` view, so the bytes read as the sRGB colours
-//! they are. The pass's GPU time comes from timestamp queries inside the pass where the
+//! The marcher writes an `Rgba8Unorm` storage texture of sRGB-encoded bytes, which egui
+//! samples as they are (see `GpuImage`). The pass's GPU time comes from timestamp queries inside the pass where the
 //! device has them (`Marcher::encode_timed`), and otherwise from the wall clock, from
 //! submitting the pass until the device is done.
 
@@ -68,7 +67,6 @@ impl MarchView {
             rs,
             size,
             wgpu::TextureFormat::Rgba8Unorm,
-            wgpu::TextureFormat::Rgba8UnormSrgb,
             wgpu::TextureUsages::STORAGE_BINDING,
         );
         let mut encoder = rs
