@@ -394,7 +394,7 @@ impl eframe::App for SandboxApp {
         }
         egui::Panel::right("sandbox controls")
             .resizable(false)
-            .exact_size(310.0)
+            .exact_size(340.0)
             .show(ui, |ui| self.side_panel(ui, frame));
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)

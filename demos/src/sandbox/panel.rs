@@ -231,7 +231,13 @@ fn timing_grid(ui: &mut egui::Ui, rows: &[(&str, Tails)]) {
         for (name, t) in rows {
             ui.label(*name);
             for v in [t.median, t.p95, t.p99, t.max] {
-                ui.monospace(format!("{v:.1}"));
+                // Four significant digits keep the columns inside the panel.
+                let text = if v >= 100.0 {
+                    format!("{v:.0}")
+                } else {
+                    format!("{v:.1}")
+                };
+                ui.monospace(text);
             }
             ui.end_row();
         }
