@@ -468,6 +468,81 @@ fn scrubbing_reaches_the_ticks_state() -> TestResult {
     )
 }
 
+/// A file dropped on the window, as eframe hands it over.
+#[derive(Debug)]
+struct DroppedPath(std::path::PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+fn drop_file(h: &mut Harness<'_, SandboxApp>, path: &std::path::Path) {
+    h.input_mut()
+        .dropped_files
+        .push(std::sync::Arc::new(DroppedPath(path.to_path_buf())));
+    h.run_steps(2);
+}
+
+fn dropped_levels_and_replays_load() -> TestResult {
+    let mut h = harness();
+    let caverns = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../levels/caverns.ron");
+    drop_file(&mut h, &caverns);
+    let expected = Level::load(&caverns).map_err(|e| e.to_string())?;
+    ensure(
+        h.state().session().level().name() == expected.name(),
+        format!(
+            "a dropped level starts a match on it, not on {}",
+            h.state().session().level().name()
+        ),
+    )?;
+    ensure(
+        h.state().level_error().is_none(),
+        "no error for a good level",
+    )?;
+
+    // A replay of this match, dropped back: it loads and verifies.
+    h.run_steps(60);
+    let path = replay_path("dropped");
+    let bytes = h.state().session().replay_bytes()?;
+    std::fs::write(&path, bytes).map_err(|e| e.to_string())?;
+    drop_file(&mut h, &path);
+    std::fs::remove_file(&path).ok();
+    ensure(
+        matches!(
+            h.state().session().verified(),
+            Some(Verified::Passed { .. })
+        ),
+        format!(
+            "the dropped replay verifies: {:?}",
+            h.state().session().verified()
+        ),
+    )?;
+
+    // A dropped file that is not a level shows its error and keeps the match.
+    let bad = std::env::temp_dir().join(format!("sandbox-ui-{}-dropped.ron", std::process::id()));
+    std::fs::write(&bad, "not a level").map_err(|e| e.to_string())?;
+    drop_file(&mut h, &bad);
+    std::fs::remove_file(&bad).ok();
+    let e = h
+        .state()
+        .level_error()
+        .ok_or("no error for a dropped bad level")?;
+    ensure(
+        e.contains("dropped.ron"),
+        format!("the error names the file: {e}"),
+    )?;
+    ensure(
+        h.state().session().level().name() == expected.name(),
+        "the match on the good level goes on",
+    )
+}
+
 fn main() {
     common::run(&[
         (
@@ -491,6 +566,10 @@ fn main() {
         (
             "scrubbing_reaches_the_ticks_state",
             scrubbing_reaches_the_ticks_state,
+        ),
+        (
+            "dropped_levels_and_replays_load",
+            dropped_levels_and_replays_load,
         ),
     ])
 }
