@@ -491,9 +491,15 @@ fn drop_file(h: &mut Harness<'_, SandboxApp>, path: &std::path::Path) {
 
 fn dropped_levels_and_replays_load() -> TestResult {
     let mut h = harness();
-    let caverns = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../levels/caverns.ron");
-    drop_file(&mut h, &caverns);
-    let expected = Level::load(&caverns).map_err(|e| e.to_string())?;
+    // The default level under another name, written where a user would keep it.
+    let level_file =
+        std::env::temp_dir().join(format!("sandbox-ui-{}-other.ron", std::process::id()));
+    let renamed = DEFAULT_LEVEL_RON.replacen("name: \"Default\"", "name: \"Other\"", 1);
+    std::fs::write(&level_file, renamed).map_err(|e| e.to_string())?;
+    drop_file(&mut h, &level_file);
+    let expected = Level::load(&level_file).map_err(|e| e.to_string())?;
+    std::fs::remove_file(&level_file).ok();
+    ensure(expected.name() == "Other", "the renamed level")?;
     ensure(
         h.state().session().level().name() == expected.name(),
         format!(

@@ -819,8 +819,9 @@ pub enum VerifyError {
 /// Re-simulates `replay` on `level` and compares every stored hash.
 ///
 /// Checks the level hash first, then builds the world from the replay's settings, advances
-/// it once per input row ([`Replay::advance`]: the tick's edits, then its step) and compares the stored hash of every tick the world reaches
-/// (including its starting tick). Stops at the first mismatch.
+/// it once per input row ([`Replay::advance`]: the tick's edits, then its step) and
+/// compares the stored hash of every tick the world reaches (including its starting tick).
+/// Stops at the first mismatch.
 pub fn verify(replay: &Replay, level: &Level) -> Result<VerifyReport, VerifyError> {
     replay
         .validate()

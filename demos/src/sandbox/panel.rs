@@ -231,7 +231,7 @@ fn timing_grid(ui: &mut egui::Ui, rows: &[(&str, Tails)]) {
         for (name, t) in rows {
             ui.label(*name);
             for v in [t.median, t.p95, t.p99, t.max] {
-                // Four significant digits keep the columns inside the panel.
+                // At most four digits, so the columns stay inside the fixed-width panel.
                 let text = if v >= 100.0 {
                     format!("{v:.0}")
                 } else {

@@ -294,7 +294,7 @@ impl Session {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use craterfield::field2d::Sdf;
+    use craterfield::field2d::{DEFAULT_LEVEL_RON, Sdf};
     use glam::Vec2;
 
     fn live_session_with_edits(ticks: u32) -> Session {
@@ -371,8 +371,11 @@ mod tests {
     fn a_replay_of_another_level_or_garbage_changes_nothing() {
         let s = live_session_with_edits(60);
         let bytes = s.replay_bytes().expect("encodes");
-        let caverns = Level::from_ron(include_str!("../../../levels/caverns.ron")).expect("level");
-        let mut other = Session::new(caverns).expect("session");
+        // The default level under another name: another level hash.
+        let renamed = DEFAULT_LEVEL_RON.replacen("name: \"Default\"", "name: \"Other\"", 1);
+        let other_level = Level::from_ron(&renamed).expect("level");
+        assert_ne!(level_hash(&other_level), level_hash(s.level()));
+        let mut other = Session::new(other_level).expect("session");
         let before = other.world().state_hash();
         let e = other.load_replay_bytes(&bytes).expect_err("another level");
         assert!(e.contains("level"), "{e}");

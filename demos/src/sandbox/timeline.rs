@@ -5,7 +5,7 @@
 
 use craterfield::field2d::Event;
 use craterfield::net::replay::Replay;
-use craterfield::sim::{Input, Settings, World, WorldState};
+use craterfield::sim::{Input, World, WorldState};
 
 /// Ticks between two kept world states: seeking re-simulates at most this many ticks.
 pub const STATE_INTERVAL: u32 = 120;
@@ -13,19 +13,13 @@ pub const STATE_INTERVAL: u32 = 120;
 /// Ticks between two state hashes in a saved replay.
 pub const HASH_INTERVAL: u32 = 60;
 
-/// A match's history.
+/// A match's history: the replay being recorded, with a state hash for every tick, and
+/// the world states kept for seeking.
 #[derive(Clone, Debug)]
 pub struct Timeline {
-    level_hash: u64,
-    settings: Settings,
-    players: u8,
-    /// Row-major, `players` inputs per tick.
-    inputs: Vec<Input>,
-    /// Ticks never decrease.
-    edits: Vec<Event>,
-    /// Known `(tick, hash)` pairs, ticks increasing: every tick of a live session, the
-    /// stored ones of a loaded replay.
-    hashes: Vec<(u32, u64)>,
+    /// Inputs, edits and `(tick, hash)` pairs (every tick of a live session, the stored
+    /// ones of a loaded replay).
+    replay: Replay,
     /// `states[i]` is the world at tick `i * STATE_INTERVAL`.
     states: Vec<WorldState>,
 }
@@ -34,12 +28,15 @@ impl Timeline {
     /// An empty history starting at `world` (tick 0).
     pub fn new(world: &World, level_hash: u64) -> Timeline {
         Timeline {
-            level_hash,
-            settings: *world.settings(),
-            players: world.players() as u8,
-            inputs: Vec::new(),
-            edits: Vec::new(),
-            hashes: vec![(world.tick(), world.state_hash())],
+            replay: Replay {
+                level_hash,
+                settings: *world.settings(),
+                players: world.players() as u8,
+                hash_interval: HASH_INTERVAL,
+                inputs: Vec::new(),
+                hashes: vec![(world.tick(), world.state_hash())],
+                edits: Vec::new(),
+            },
             states: vec![world.state()],
         }
     }
@@ -47,50 +44,32 @@ impl Timeline {
     /// The history of `replay`, whose first world is `world` (at tick 0).
     pub fn from_replay(replay: &Replay, world: &World) -> Timeline {
         Timeline {
-            level_hash: replay.level_hash,
-            settings: replay.settings,
-            players: replay.players,
-            inputs: replay.inputs.clone(),
-            edits: replay.edits.clone(),
-            hashes: replay.hashes.clone(),
+            replay: replay.clone(),
             states: vec![world.state()],
         }
     }
 
     /// Ticks recorded.
     pub fn ticks(&self) -> u32 {
-        (self.inputs.len() / usize::from(self.players.max(1))) as u32
+        self.replay.ticks()
     }
 
     /// Edits recorded.
     pub fn edits(&self) -> &[Event] {
-        &self.edits
+        &self.replay.edits
     }
 
     /// The known state hash of `tick`.
     pub fn hash_at(&self, tick: u32) -> Option<u64> {
-        let i = self.hashes.binary_search_by_key(&tick, |h| h.0).ok()?;
-        Some(self.hashes[i].1)
-    }
-
-    fn row(&self, tick: u32) -> &[Input] {
-        let p = usize::from(self.players);
-        let start = tick as usize * p;
-        &self.inputs[start..start + p]
-    }
-
-    fn edits_at(&self, tick: u32) -> &[Event] {
-        let start = self.edits.partition_point(|e| e.tick < tick);
-        let end = self.edits.partition_point(|e| e.tick <= tick);
-        &self.edits[start..end]
+        self.replay.hash_at(tick)
     }
 
     /// Records one live tick: the edits applied before the step, the inputs stepped with,
     /// and the world after it.
     pub fn push_tick(&mut self, edits: &[Event], row: &[Input], after: &World) {
-        self.edits.extend_from_slice(edits);
-        self.inputs.extend_from_slice(row);
-        self.hashes.push((after.tick(), after.state_hash()));
+        self.replay.edits.extend_from_slice(edits);
+        self.replay.inputs.extend_from_slice(row);
+        self.replay.hashes.push((after.tick(), after.state_hash()));
         self.keep_state(after);
     }
 
@@ -105,29 +84,18 @@ impl Timeline {
     /// Forgets everything after `tick` (a live session continues from there).
     pub fn truncate(&mut self, tick: u32) {
         let tick = tick.min(self.ticks());
-        self.inputs
-            .truncate(tick as usize * usize::from(self.players));
-        self.edits
-            .truncate(self.edits.partition_point(|e| e.tick < tick));
-        self.hashes
-            .truncate(self.hashes.partition_point(|h| h.0 <= tick));
+        let r = &mut self.replay;
+        r.inputs.truncate(tick as usize * usize::from(r.players));
+        r.edits.truncate(r.edits.partition_point(|e| e.tick < tick));
+        r.hashes.truncate(r.hashes.partition_point(|h| h.0 <= tick));
         self.states.truncate((tick / STATE_INTERVAL) as usize + 1);
     }
 
-    /// Advances `world` one recorded tick (its edits, then its step). Returns the stored
-    /// hash of the new tick when it differs from the world's: a divergence.
+    /// Advances `world` one recorded tick (its edits, then its step:
+    /// [`Replay::advance`]). Returns the stored hash of the new tick when it differs from
+    /// the world's: a divergence.
     pub fn advance(&mut self, world: &mut World) -> Result<Option<(u32, u64)>, String> {
-        let tick = world.tick();
-        if tick >= self.ticks() {
-            return Err(format!("tick {tick} is the end of the recording"));
-        }
-        for &e in self.edits_at(tick) {
-            world
-                .apply_event(e)
-                .map_err(|e| format!("edit at tick {tick}: {e}"))?;
-        }
-        let row = self.row(tick).to_vec();
-        world.step(&row).map_err(|e| format!("tick {tick}: {e}"))?;
+        self.replay.advance(world).map_err(|e| e.to_string())?;
         self.keep_state(world);
         let now = world.tick();
         Ok(self
@@ -161,19 +129,21 @@ impl Timeline {
     pub fn to_replay(&self) -> Replay {
         let last = self.ticks();
         let hashes = self
+            .replay
             .hashes
             .iter()
             .copied()
             .filter(|&(t, _)| t > 0 && (t % HASH_INTERVAL == 0 || t == last))
             .collect();
+        let r = &self.replay;
         Replay {
-            level_hash: self.level_hash,
-            settings: self.settings,
-            players: self.players,
+            level_hash: r.level_hash,
+            settings: r.settings,
+            players: r.players,
             hash_interval: HASH_INTERVAL,
-            inputs: self.inputs.clone(),
+            inputs: r.inputs.clone(),
             hashes,
-            edits: self.edits.clone(),
+            edits: r.edits.clone(),
         }
     }
 }
