@@ -515,9 +515,9 @@ fn graphs_with_the_same_content_share_a_fingerprint() {
 }
 
 /// A chain of `depth` named nodes, each the union of `fanout` copies of the next one at
-/// moved points (each copy a call of the next node's context): legal, shared in the
-/// text, but `fanout^depth` copies once a GPU compiler inlines the calls.
-fn dag_level(fanout: usize, depth: usize) -> craterfield::field2d::Level {
+/// moved points (each copy a call of the next node's context): shared in the text, but
+/// `fanout^depth` copies once a GPU compiler inlines the calls.
+fn dag_level(fanout: usize, depth: usize) -> craterfield::field2d::Graph {
     let mut nodes = String::new();
     for i in 0..depth {
         let copies: Vec<String> = (0..fanout)
@@ -536,11 +536,23 @@ fn dag_level(fanout: usize, depth: usize) -> craterfield::field2d::Level {
         "Level(name: \"dag\", bounds: (min: (0.0, 0.0), max: (1024.0, 1024.0)),\n\
          materials: [(name: \"soil\", color: (1, 2, 3))], root: Ref(\"n0\"), nodes: {{\n{nodes}}})"
     );
-    craterfield::field2d::Level::from_ron(&text).unwrap()
+    graph_past_the_cost_limit(&text)
+}
+
+/// The level's graph compiled without the evaluation-cost limit: a level loader refuses
+/// these (their tapes cost too much), so the emitter's own budget is the last line here, as
+/// it is for a caller that raises `GraphLimits::max_eval_work`.
+fn graph_past_the_cost_limit(text: &str) -> craterfield::field2d::Graph {
+    let file: craterfield::field2d::LevelFile = ron::from_str(text).unwrap();
+    let limits = craterfield::field2d::GraphLimits {
+        max_eval_work: u64::MAX,
+        ..Default::default()
+    };
+    craterfield::field2d::Graph::compile_with_limits(&file.root, &file.nodes, limits).unwrap()
 }
 
 /// What the emitter hands a driver is bounded: DAG levels of several fan-outs and depths
-/// that compile (their evaluation cost is within the level limits) are refused once their
+/// that compile (within every level limit but the tape's cost) are refused once their
 /// inlined size passes the budget, and so is a union too wide for the text budget; the
 /// ones within it emit valid WGSL with an inlined size that matches the copies.
 #[test]
@@ -554,8 +566,8 @@ fn shaders_past_the_budget_are_refused_before_a_driver_sees_them() {
         (3, 9, false),
         (8, 5, false),
     ] {
-        let level = dag_level(fanout, depth);
-        let emitter = TerrainEmitter::new(level.graph());
+        let graph = dag_level(fanout, depth);
+        let emitter = TerrainEmitter::new(&graph);
         let plan = emitter.plan(None, 32.0);
         let inlined = emitter.inlined_statements(&plan);
         let copies = (fanout as u64).pow(depth as u32);
@@ -572,7 +584,8 @@ fn shaders_past_the_budget_are_refused_before_a_driver_sees_them() {
             Err(e) => panic!("{e}"),
         }
     }
-    // 15,000 children of one union: within every level limit, 1.5 MB of text.
+    // 15,000 children of one union: within every level limit but the tape's cost, 1.5 MB
+    // of text.
     let children: Vec<String> = (0..15_000)
         .map(|i| {
             format!(
@@ -587,8 +600,8 @@ fn shaders_past_the_budget_are_refused_before_a_driver_sees_them() {
          materials: [(name: \"soil\", color: (1, 2, 3))], root: Union([{}]))",
         children.join(", ")
     );
-    let level = craterfield::field2d::Level::from_ron(&text).unwrap();
-    let emitter = TerrainEmitter::new(level.graph());
+    let graph = graph_past_the_cost_limit(&text);
+    let emitter = TerrainEmitter::new(&graph);
     let e = emitter
         .emit_within(&emitter.plan(None, 32.0), &budget)
         .unwrap_err();

@@ -83,6 +83,10 @@ struct Timings {
 struct FieldStats {
     solid_fraction: f64,
     lipschitz: f32,
+    /// Work units of one evaluation of the level's tape, and its instructions
+    /// (`Graph::eval_cost`; levels past `MAX_EVAL_WORK` are refused at load).
+    eval_work: u64,
+    tape_instructions: usize,
     grid_cells: usize,
     max_events_in_a_cell: usize,
     bricks: usize,
@@ -181,6 +185,8 @@ pub(crate) fn run(
         field: FieldStats {
             solid_fraction: solid_fraction(&terrain, &level),
             lipschitz: terrain.lipschitz(),
+            eval_work: level.graph().eval_cost().work,
+            tape_instructions: level.graph().eval_cost().instructions,
             grid_cells: grid.cells,
             max_events_in_a_cell: grid.max_cell_events,
             bricks: grid.bricks,
@@ -200,7 +206,13 @@ pub(crate) fn run(
     std::fs::write(&json_path, json + "\n")
         .map_err(|e| format!("cannot write {}: {e}", json_path.display()))?;
 
-    println!("craterfield demo: level \"{}\"", summary.level);
+    println!(
+        "craterfield demo: level \"{}\" (cost {} work units per evaluation, {} tape instructions; limit {})",
+        summary.level,
+        summary.field.eval_work,
+        summary.field.tape_instructions,
+        craterfield::field2d::MAX_EVAL_WORK
+    );
     println!(
         "  {} events applied ({} craters, {} fills; {} shells missed, {} rejected) in {:.0} ms",
         applied, stats.carves, stats.fills, stats.misses, stats.rejected, barrage_ms

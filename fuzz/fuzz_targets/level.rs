@@ -1,9 +1,10 @@
-//! Level files: parse, validate, compile; if the level loads, build its terrain and query
-//! it (distance, sample, raycast) at points taken from the input's tail.
+//! Level files: parse, validate, compile; if the level loads, its evaluation cost is within
+//! the budget, and its terrain is built and queried (distance, sample, raycast) at points
+//! taken from the input's tail.
 #![no_main]
 
 use craterfield::field2d::query::{RayOptions, raycast};
-use craterfield::field2d::{Level, Sdf};
+use craterfield::field2d::{Level, MAX_EVAL_WORK, Sdf};
 use glam::Vec2;
 use libfuzzer_sys::fuzz_target;
 
@@ -14,6 +15,9 @@ fuzz_target!(|data: &[u8]| {
     let Ok(level) = Level::from_ron(text) else {
         return;
     };
+    // An accepted level is one whose every query costs at most the budget.
+    let cost = level.graph().eval_cost();
+    assert!(cost.work <= MAX_EVAL_WORK, "accepted at {cost:?}");
     let Ok(terrain) = level.terrain() else {
         return;
     };

@@ -62,4 +62,17 @@ pub enum LevelError {
         /// The limit.
         limit: u64,
     },
+    /// One evaluation of the compiled level costs more than the limit allows: every query
+    /// and every pixel would pay it.
+    #[error(
+        "root: one evaluation costs {work} work units ({instructions} tape instructions plus polygon edges, height-profile segments and noise), over the limit of {limit} (GraphLimits::max_eval_work): simplify the level"
+    )]
+    TooCostly {
+        /// Work units of one evaluation ([`crate::field2d::tape::EvalCost::work`]).
+        work: u64,
+        /// Instructions of the compiled tape.
+        instructions: usize,
+        /// The limit.
+        limit: u64,
+    },
 }

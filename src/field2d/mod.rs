@@ -27,7 +27,7 @@ pub use crate::det::quant::{FIXED_ONE, QuantError};
 pub use aabb::Aabb;
 pub use error::LevelError;
 pub use event::{Event, EventError, EventKind};
-pub use graph::{Exactness, Graph, GraphLimits, NodeId, NodeInfo};
+pub use graph::{Exactness, Graph, GraphLimits, MAX_EVAL_WORK, NodeId, NodeInfo};
 pub use level::{DEFAULT_LEVEL_RON, Level, LevelFile, MAX_LEVEL_BYTES, MaterialDef, WorldBounds};
 pub use node::{Axis, Node, P2};
 pub use sample::{MaterialId, Sample};

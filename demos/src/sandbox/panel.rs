@@ -211,6 +211,13 @@ impl SandboxApp {
 
     fn level_controls(&mut self, ui: &mut egui::Ui) {
         ui.label(format!("level: {}", self.session.level().name()));
+        let cost = self.session.level().graph().eval_cost();
+        ui.label(format!(
+            "cost {} work units per evaluation ({} tape instructions; limit {})",
+            cost.work,
+            cost.instructions,
+            craterfield::field2d::MAX_EVAL_WORK
+        ));
         let label = ui.label("Level file");
         ui.text_edit_singleline(&mut self.level_path)
             .labelled_by(label.id);

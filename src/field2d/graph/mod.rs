@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use super::aabb::Aabb;
 use super::node::Axis;
 use super::sample::MaterialId;
-use super::tape::Program;
+use super::tape::{EvalCost, Program};
 
 /// Index of a node in a compiled [`Graph`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -48,6 +48,11 @@ pub struct NodeInfo {
     pub cost: u64,
 }
 
+/// The default [`GraphLimits::max_eval_work`]: twice what the largest expression we test
+/// against costs (prospero: 7,866 operations, 3,994 work units), and about thirty times the
+/// shipped levels (at most 270).
+pub const MAX_EVAL_WORK: u64 = 8_192;
+
 /// Size limits enforced by [`Graph::compile`], so no input makes evaluation unbounded.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GraphLimits {
@@ -65,6 +70,11 @@ pub struct GraphLimits {
     /// lipschitz`: past this a raycast or a sphere trace crawls (a noise wavelength of
     /// 1e-30 gave a bound of 2.55e31, and every raycast hit at its origin).
     pub max_lipschitz: f32,
+    /// Work units one evaluation of the compiled tape may cost ([`EvalCost::work`]): every
+    /// query, every cell's specialization and every GPU pixel pays it, so a level past it
+    /// would stall whatever loads it (an `Add` of 24,000 `Mul(X, Const)` terms, 134 KB of
+    /// text, made one distance query cost 844 us).
+    pub max_eval_work: u64,
 }
 
 impl Default for GraphLimits {
@@ -76,6 +86,7 @@ impl Default for GraphLimits {
             max_points: 65_536,
             max_coordinate: 1.0e6,
             max_lipschitz: 1.0e4,
+            max_eval_work: MAX_EVAL_WORK,
         }
     }
 }
@@ -217,6 +228,8 @@ pub struct Graph {
     /// The lowered tape program, built on first use ([`Graph::program`], where the
     /// lowering is).
     pub(crate) program: OnceLock<Arc<Program>>,
+    /// What one evaluation of the whole program costs (counted at compile time).
+    pub(crate) cost: EvalCost,
 }
 
 impl Graph {
@@ -233,6 +246,12 @@ impl Graph {
     /// Facts about a node, or `None` for an id from another graph.
     pub fn info(&self, id: NodeId) -> Option<&NodeInfo> {
         self.info.get(id.0 as usize)
+    }
+
+    /// What one evaluation of the whole (fused) tape costs. A cell's specialized tape costs
+    /// at most this; points far outside the level run the whole tape.
+    pub fn eval_cost(&self) -> EvalCost {
+        self.cost
     }
 
     /// Number of compiled nodes (shared sub-graphs count once).

@@ -20,6 +20,7 @@
 //!    instruction has an immediate form, and values get registers by a linear scan that
 //!    reuses a register as soon as its value's last use has passed.
 
+mod cost;
 mod error;
 mod fuse;
 mod image;
@@ -31,6 +32,7 @@ mod specialize;
 
 use std::sync::Arc;
 
+pub use cost::EvalCost;
 pub use error::EvalError;
 pub(crate) use error::check;
 pub use fuse::FuseOptions;

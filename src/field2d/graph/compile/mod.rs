@@ -10,6 +10,7 @@ use glam::Vec2;
 use super::{Graph, GraphLimits, NodeId, NodeInfo, Op};
 use crate::field2d::error::LevelError;
 use crate::field2d::node::{Node, P2};
+use crate::field2d::tape::{EvalCost, Outputs};
 
 mod booleans;
 mod expressions;
@@ -46,12 +47,22 @@ impl Graph {
                 limit: limits.max_cost,
             });
         }
-        Ok(Graph {
+        let mut graph = Graph {
             ops: c.ops,
             info: c.info,
             root,
             program: OnceLock::new(),
-        })
+            cost: EvalCost::default(),
+        };
+        graph.cost = graph.program().fuse().tape(Outputs::ValueMaterial).cost();
+        if graph.cost.work > limits.max_eval_work {
+            return Err(LevelError::TooCostly {
+                work: graph.cost.work,
+                instructions: graph.cost.instructions,
+                limit: limits.max_eval_work,
+            });
+        }
+        Ok(graph)
     }
 }
 
