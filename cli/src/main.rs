@@ -199,6 +199,7 @@ enum BenchCommand {
 const DEMO_MATCH_TICKS: u32 = 1200;
 
 fn main() -> ExitCode {
+    quiet_headless_vulkan();
     let cli = Cli::parse();
     let result = match cli.command.unwrap_or(Command::Demo {
         out: PathBuf::from("out/demo"),
@@ -283,17 +284,48 @@ fn main() -> ExitCode {
     }
 }
 
+/// On a machine without a desktop, Mesa's Vulkan device-selection layer (loaded by the
+/// Vulkan loader for every adapter search) tries to reach a Wayland compositor and prints
+/// `XDG_RUNTIME_DIR is invalid or not set` twice into every command's output. The layer
+/// only orders GPUs by the display they drive, which a headless run does not have, so the
+/// process restarts itself once with the layer's own off switch set. Environment variables
+/// are set only through the new process, never by mutating this one's.
+fn quiet_headless_vulkan() {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::process::CommandExt;
+        let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty());
+        let runtime_dir_ok =
+            std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| std::path::Path::new(&d).is_dir());
+        if runtime_dir_ok || set("WAYLAND_DISPLAY") || set("DISPLAY") || set("NODEVICE_SELECT") {
+            return;
+        }
+        let Ok(exe) = std::env::current_exe() else {
+            return;
+        };
+        // `exec` returns only when the restart failed: carry on as we are then.
+        let _ = std::process::Command::new(exe)
+            .args(std::env::args_os().skip(1))
+            .env("NODEVICE_SELECT", "1")
+            .exec();
+    }
+}
+
 fn level_check(file: &std::path::Path) -> Result<ExitCode, String> {
     match craterfield::field2d::Level::load(file) {
         Ok(level) => {
             let info = level.graph().root_info();
+            let cost = level.graph().eval_cost();
             println!(
-                "{}: ok: level \"{}\", {} nodes, {:?} distance, Lipschitz bound {:.3}",
+                "{}: ok: level \"{}\", {} nodes, {:?} distance, Lipschitz bound {:.3}, cost {} work units per evaluation ({} tape instructions; limit {})",
                 file.display(),
                 level.name(),
                 level.graph().node_count(),
                 info.exactness,
-                info.lipschitz
+                info.lipschitz,
+                cost.work,
+                cost.instructions,
+                craterfield::field2d::MAX_EVAL_WORK
             );
             Ok(ExitCode::SUCCESS)
         }

@@ -69,14 +69,47 @@ fn level_check_accepts_shipped_levels_and_rejects_bad_ones() {
             .arg(&path)
             .output()
             .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{}: {text}", path.display());
         assert!(
-            out.status.success(),
-            "{}: {}",
-            path.display(),
-            String::from_utf8_lossy(&out.stdout)
+            text.contains("work units per evaluation") && text.contains("limit 8192"),
+            "the check prints the level's cost: {text}"
         );
     }
     let dir = temp_dir("check");
+    // A simple polygon of 10,000 vertices passes every limit but the cost of an evaluation.
+    let points: Vec<String> = (0..10_000)
+        .map(|k| {
+            let t = k as f64 / 10_000.0 * std::f64::consts::TAU;
+            format!(
+                "({:.3}, {:.3})",
+                50.0 + 30.0 * t.cos(),
+                50.0 + 30.0 * t.sin()
+            )
+        })
+        .collect();
+    let costly = dir.join("costly.ron");
+    std::fs::write(
+        &costly,
+        format!(
+            r#"Level(name: "costly", bounds: (min: (0.0, 0.0), max: (100.0, 100.0)),
+            materials: [(name: "a", color: (1, 2, 3))], root: Polygon(points: [{}]))"#,
+            points.join(", ")
+        ),
+    )
+    .unwrap();
+    let out = craterfield()
+        .args(["level", "check"])
+        .arg(&costly)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("10003 work units")
+            && text.contains("limit of 8192 (GraphLimits::max_eval_work)"),
+        "{text}"
+    );
     let bad = dir.join("bad.ron");
     std::fs::write(
         &bad,
@@ -807,5 +840,30 @@ fn every_reader_refuses_special_files() {
             );
         }
     }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A GPU command on a machine without a desktop (no runtime directory, no display) prints
+/// only its own output: the adapter search's loader layers say nothing.
+#[test]
+fn a_headless_gpu_run_prints_only_its_own_output() {
+    let dir = temp_dir("headless");
+    let out = craterfield()
+        .args(["render", "--backend", "auto", "--width", "160", "--out"])
+        .arg(dir.join("frame.png"))
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("DISPLAY")
+        .env_remove("NODEVICE_SELECT")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        !stderr.contains("XDG_RUNTIME_DIR"),
+        "the adapter search printed into the output: {stderr}"
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.starts_with("wrote "), "{stdout}");
     std::fs::remove_dir_all(&dir).ok();
 }
