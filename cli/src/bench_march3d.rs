@@ -15,6 +15,7 @@ use std::time::Instant;
 use craterfield::backend::Backend;
 use craterfield::march3d::compile::{CompileOptions, Optimization};
 use craterfield::march3d::cpu::{self, TraceOptions};
+use craterfield::march3d::gpu::MarchGpuError;
 use craterfield::march3d::scene::Scene;
 use craterfield::march3d::simd;
 use craterfield::march3d::{Camera3d, Plan};
@@ -65,6 +66,9 @@ struct EmitterRow {
     sdf_evals_per_px: f64,
     steps_per_px: f64,
     gpu_ms: Option<f64>,
+    /// The GPU raymarcher refused the plan: its shader is past the marcher's budget
+    /// (`MarchGpuError::TooLarge`), so it has no GPU time.
+    gpu_refused: bool,
     nodes: usize,
     max_steps: u32,
 }
@@ -205,17 +209,24 @@ fn emitter_rows(
         let (img, stats) =
             cpu::render_counted(&plan, &cam, size.0, size.1, threads).map_err(|e| e.to_string())?;
         let px = stats.pixels.max(1) as f64;
+        let mut gpu_refused = false;
         let gpu_ms = match gpu {
-            Some(g) => {
-                g.marcher
-                    .render_timed(&plan, &cam, size.0, size.1)
-                    .map_err(|e| e.to_string())?;
-                let (_, ms) = g
-                    .marcher
-                    .render_timed(&plan, &cam, size.0, size.1)
-                    .map_err(|e| e.to_string())?;
-                Some(ms)
-            }
+            // The first frame compiles the pipeline; the second is timed.
+            Some(g) => match g.marcher.render_timed(&plan, &cam, size.0, size.1) {
+                Err(e @ MarchGpuError::TooLarge { .. }) => {
+                    eprintln!("  forest {config}: refused on the GPU: {e}");
+                    gpu_refused = true;
+                    None
+                }
+                first => {
+                    first.map_err(|e| e.to_string())?;
+                    let (_, ms) = g
+                        .marcher
+                        .render_timed(&plan, &cam, size.0, size.1)
+                        .map_err(|e| e.to_string())?;
+                    Some(ms)
+                }
+            },
             None => None,
         };
         if !o.json {
@@ -232,6 +243,7 @@ fn emitter_rows(
             sdf_evals_per_px: stats.sdf_evals as f64 / px,
             steps_per_px: stats.steps as f64 / px,
             gpu_ms,
+            gpu_refused,
             nodes: plan.nodes.len(),
             max_steps: plan.march.max_steps,
         });
@@ -361,9 +373,19 @@ fn print_tables(r: &Report, o: &Options) {
             e.config,
             e.sdf_evals_per_px,
             e.steps_per_px,
-            e.gpu_ms.map_or("-".to_string(), |m| format!("{m:.2}")),
+            match e.gpu_ms {
+                Some(m) => format!("{m:.2}"),
+                None if e.gpu_refused => "refused".to_string(),
+                None => "-".to_string(),
+            },
             e.nodes,
             e.max_steps
+        );
+    }
+    if r.emitter.iter().any(|e| e.gpu_refused) {
+        println!(
+            "refused: the config's shader is past the GPU raymarcher's budget of {} inlined statements (docs/limits.md); it has CPU figures only",
+            craterfield::emit::codegen3d::MARCH3D_BUDGET.max_inlined_statements
         );
     }
     if let (Some(all), Some(naive)) = (all, r.emitter.iter().find(|e| e.config == "naive")) {

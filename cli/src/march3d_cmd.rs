@@ -196,12 +196,19 @@ fn gpu_render(
     size: (u32, u32),
 ) -> Result<(Vec<u8>, String), String> {
     use craterfield::gpu::GpuContext;
-    use craterfield::march3d::gpu::Marcher;
+    use craterfield::march3d::gpu::{MarchGpuError, Marcher};
+    // A plan past the shader budget is not a failure of the GPU: say so, and where it renders.
+    let refused = |e: MarchGpuError| match e {
+        MarchGpuError::TooLarge { .. } => {
+            format!("refused: {e}, with --backend cpu")
+        }
+        e => e.to_string(),
+    };
     let ctx = GpuContext::new().map_err(|e| e.to_string())?;
     let mut marcher = Marcher::new(&ctx.device, &ctx.queue).map_err(|e| e.to_string())?;
     let (rgba, ms) = marcher
         .render_timed(plan, camera, size.0, size.1)
-        .map_err(|e| e.to_string())?;
+        .map_err(refused)?;
     Ok((
         rgba,
         format!("GPU raymarcher on {} in {ms:.1} ms", ctx.describe()),

@@ -8,8 +8,10 @@
 //! hand-written half (`shaders/march3d.wgsl`: primitives, noise, the march, normals,
 //! shadows, shading) is appended; it refers to the emitted `em_` names.
 
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
+use super::ShaderBudget;
 use super::wgsl::{NONFINITE_HELPER, f32_expr, f32_literal, u32_literal};
 use crate::emit::plan3d::{
     AoMode, EARLY_OUT_MARGIN, Guard, Hash, Lift, MAX_OCTAVES, Node, Plan, PlanError, Prim,
@@ -46,6 +48,175 @@ pub fn march_wgsl(plan: &Plan) -> Result<String, PlanError> {
     out.push('\n');
     out.push_str(MARCH3D_WGSL);
     Ok(out)
+}
+
+/// What a plan's module may cost the GPU compiler that receives it: 1 MiB of text (as
+/// for 2D) and 150,000 statements once every call from `main` is inlined
+/// ([`march_inlined_statements`]).
+///
+/// Counted on the builtin scenes at 16:9, in statements: sparse 8,140 with every
+/// optimization and 54,303 naive; forest 29,472 and 422,823. Naive with the portable hash,
+/// as the GPU tests compare it, is 74,559 for sparse and 575,559 for forest. In a naive
+/// plan every node computes the terrain's height, the normals take central differences, and
+/// `main` inlines the scene distance about 15 times. That makes naive forest 14 to 20 times
+/// forest. On an NVIDIA H200 (Vulkan) the GPU tests compiled and rendered naive sparse
+/// (54,303), then stopped at naive forest for over 150 s, most likely in the driver's
+/// compiler; the same driver took about 6 s for prospero's 6,603 statements (a 2D module).
+/// The limit is twice the largest plan the tests render on a GPU (naive sparse, portable
+/// hash) and well under naive forest. It also refuses forest without constant baking
+/// (260,712).
+pub const MARCH3D_BUDGET: ShaderBudget = ShaderBudget {
+    max_bytes: 1 << 20,
+    max_inlined_statements: 150_000,
+};
+
+/// Statements of `plan`'s emitted `module` ([`march_wgsl`]) once a GPU compiler has inlined
+/// every call from the entry point `main`: [`inlined_statements`] with the shading model the
+/// plan does not use left out (`main` branches on the constant `em_paper`, and every
+/// compiler drops the constant-false side).
+pub fn march_inlined_statements(plan: &Plan, module: &str) -> u64 {
+    let unused = match plan.shading {
+        Shading::Paper(_) => "world_shade",
+        Shading::World(_) => "paper_shade",
+    };
+    inlined_statements(module, "main", &[unused])
+}
+
+/// Statements of a WGSL `module` once a GPU compiler has inlined every call reachable from
+/// the function `entry`: each function's `;` plus, at every call site, its callee's inlined
+/// count (functions named in `dropped` count nothing). Comments are skipped. A loop's body
+/// counts once, although a compiler that unrolls it compiles more; that is what the budget's
+/// margin is for. An `entry` the module does not define counts 0.
+///
+/// The 2D emitter counts its modules from the level graph before writing any text
+/// (`TerrainEmitter::inlined_statements`); a 3D module's size comes from the hand-written
+/// half as much as from the plan, so it is counted from the text.
+pub fn inlined_statements(module: &str, entry: &str, dropped: &[&str]) -> u64 {
+    let code = strip_comments(module);
+    let functions = function_bodies(&code);
+    let mut memo: HashMap<&str, u64> = dropped.iter().map(|&name| (name, 0)).collect();
+    inlined_size(entry, &functions, &mut memo)
+}
+
+/// `module` with every `//` line comment and `/* */` block comment (which nest in WGSL)
+/// replaced by a space, so a comment naming a function is not a call and its `;` no
+/// statement.
+fn strip_comments(module: &str) -> String {
+    let mut out = String::with_capacity(module.len());
+    let mut rest = module;
+    while !rest.is_empty() {
+        if let Some(after) = rest.strip_prefix("//") {
+            rest = after.find('\n').map_or("", |end| &after[end..]);
+            out.push(' ');
+        } else if rest.starts_with("/*") {
+            let mut depth = 0usize;
+            let mut end = rest.len();
+            let bytes = rest.as_bytes();
+            let mut i = 0;
+            while i + 1 < bytes.len() {
+                match &bytes[i..i + 2] {
+                    b"/*" => {
+                        depth += 1;
+                        i += 2;
+                    }
+                    b"*/" => {
+                        depth -= 1;
+                        i += 2;
+                        if depth == 0 {
+                            end = i;
+                            break;
+                        }
+                    }
+                    _ => i += 1,
+                }
+            }
+            rest = &rest[end..];
+            out.push(' ');
+        } else {
+            let next = rest.find('/').map_or(rest.len(), |i| i.max(1));
+            out.push_str(&rest[..next]);
+            rest = &rest[next..];
+        }
+    }
+    out
+}
+
+fn is_ident_char(c: char) -> bool {
+    c.is_ascii_alphanumeric() || c == '_'
+}
+
+/// Every function of comment-free WGSL `code`: its name and its body, braces included.
+fn function_bodies(code: &str) -> HashMap<&str, &str> {
+    let mut bodies = HashMap::new();
+    let mut at = 0;
+    while let Some(found) = code[at..].find("fn ") {
+        let start = at + found;
+        at = start + 3;
+        // `fn` as a whole word: `main_fn ` does not start a function.
+        if code[..start].chars().next_back().is_some_and(is_ident_char) {
+            continue;
+        }
+        let head = code[at..].trim_start();
+        let name_len = head.find(|c| !is_ident_char(c)).unwrap_or(head.len());
+        let name = &head[..name_len];
+        let Some(open) = code[at..].find('{').map(|i| at + i) else {
+            break;
+        };
+        let mut depth = 0usize;
+        let mut close = code.len();
+        for (i, c) in code[open..].char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        close = open + i + 1;
+                        break;
+                    }
+                }
+                _ => {}
+            }
+        }
+        if !name.is_empty() {
+            bodies.insert(name, &code[open..close]);
+        }
+        at = close;
+    }
+    bodies
+}
+
+/// [`inlined_statements`] of the function `name`, memoized. WGSL has no recursion; a cycle
+/// (an invalid module) counts its repeated call once rather than looping.
+fn inlined_size<'a>(
+    name: &'a str,
+    functions: &HashMap<&'a str, &'a str>,
+    memo: &mut HashMap<&'a str, u64>,
+) -> u64 {
+    if let Some(&n) = memo.get(name) {
+        return n;
+    }
+    let Some(body) = functions.get(name).copied() else {
+        return 0;
+    };
+    memo.insert(name, 0);
+    let mut total = body.matches(';').count() as u64;
+    let mut word = None;
+    for (i, c) in body.char_indices() {
+        match (is_ident_char(c), word) {
+            (true, None) => word = Some(i),
+            (false, Some(start)) => {
+                word = None;
+                let callee = &body[start..i];
+                let called = body[i..].trim_start().starts_with('(');
+                if called && functions.contains_key(callee) {
+                    total = total.saturating_add(inlined_size(callee, functions, memo));
+                }
+            }
+            _ => {}
+        }
+    }
+    memo.insert(name, total);
+    total
 }
 
 /// A literal of a value [`Plan::validate`] has proven finite.

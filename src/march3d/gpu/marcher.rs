@@ -1,9 +1,10 @@
 //! [`Marcher`]: the compute pipelines of emitted plans, the camera uniform, the readback
 //! target, and the pass that marches every pixel.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-use crate::emit::codegen3d::march_wgsl;
+use crate::emit::ShaderBudget;
+use crate::emit::codegen3d::{MARCH3D_BUDGET, march_inlined_statements, march_wgsl};
 use crate::emit::plan3d::{Camera3d, Plan};
 use crate::gpu::GpuError;
 use crate::gpu::PipelineCache;
@@ -23,6 +24,12 @@ const WORKGROUP: u32 = 8;
 /// tracer's `floor(clamp(c, 0, 1) * 255 + 0.5)`.
 pub(super) const TARGET_FORMAT: wgpu::TextureFormat = READBACK_FORMAT;
 
+/// How long [`Marcher::render_timed`] waits for a submission by default: ten minutes. That
+/// is far longer than a frame takes on a working device: Mesa's lavapipe (the GPU running
+/// on the CPU, two cores) renders the forest at 256x144 in about 2 s. Reaching it means a
+/// hung device, or a software driver on an image near the 64 Mi pixel limit.
+pub const DEFAULT_WAIT: Duration = Duration::from_secs(600);
+
 /// The GPU raymarcher on the caller's device. See the [module docs](super).
 pub struct Marcher {
     device: wgpu::Device,
@@ -33,6 +40,8 @@ pub struct Marcher {
     pipelines: PipelineCache<wgpu::ComputePipeline>,
     readback: Option<Offscreen>,
     timestamps: Option<Timestamps>,
+    budget: ShaderBudget,
+    wait_limit: Duration,
 }
 
 impl Marcher {
@@ -85,7 +94,32 @@ impl Marcher {
             pipelines: PipelineCache::new(PIPELINE_CACHE),
             readback: None,
             timestamps: Timestamps::new(device, queue, 1),
+            budget: MARCH3D_BUDGET,
+            wait_limit: DEFAULT_WAIT,
         })
+    }
+
+    /// The largest shader handed to the driver (default [`MARCH3D_BUDGET`]): a plan past it
+    /// is [`MarchGpuError::TooLarge`] before any pipeline is created.
+    pub fn shader_budget(&self) -> ShaderBudget {
+        self.budget
+    }
+
+    /// Replaces the [`shader_budget`](Self::shader_budget). Plans already compiled stay
+    /// cached.
+    pub fn set_shader_budget(&mut self, budget: ShaderBudget) {
+        self.budget = budget;
+    }
+
+    /// How long a render waits for the GPU before giving up with
+    /// [`MarchGpuError::Timeout`] (default [`DEFAULT_WAIT`]).
+    pub fn wait_limit(&self) -> Duration {
+        self.wait_limit
+    }
+
+    /// Replaces the [`wait_limit`](Self::wait_limit).
+    pub fn set_wait_limit(&mut self, limit: Duration) {
+        self.wait_limit = limit;
     }
 
     /// Pipeline cache counters: `(hits, misses)`.
@@ -163,7 +197,8 @@ impl Marcher {
     /// Like [`render_to_rgba`](Self::render_to_rgba), with the frame's time in
     /// milliseconds: GPU time of the pass from timestamp queries when the device has them
     /// ([`gpu_timestamps`](Self::gpu_timestamps)), otherwise wall-clock time from submitting
-    /// the pass to its completion. Compiling a new plan's pipeline is not timed.
+    /// the pass to its completion. Compiling a new plan's pipeline is not timed. Each wait
+    /// for the GPU is bounded by the [`wait_limit`](Self::wait_limit).
     pub fn render_timed(
         &mut self,
         plan: &Plan,
@@ -189,20 +224,21 @@ impl Marcher {
             });
         let stamps = self.timestamps.as_ref().and_then(|ts| ts.pair(0));
         self.encode_pass(&mut encoder, plan.key, target.view(), width, height, stamps);
+        // Every submission is waited for with a limit before a read maps its buffer: the
+        // reads wait without one, and by then the GPU has finished and they return at once.
         if let Some(ts) = &self.timestamps {
             ts.encode_resolve(&mut encoder);
             target.encode_copy(&mut encoder);
-            self.queue.submit([encoder.finish()]);
+            let index = self.queue.submit([encoder.finish()]);
+            wait_for(&self.device, index, self.wait_limit, "march pass")?;
             let pixels = target.read(&self.device)?.into_raw();
             let ms = ts.read_ms(&self.device)?.first().copied().unwrap_or(0.0);
             return Ok((pixels, ms));
         }
         // No timestamp queries: the wall-clock time of the pass alone, then the copy.
         let started = Instant::now();
-        self.queue.submit([encoder.finish()]);
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
+        let index = self.queue.submit([encoder.finish()]);
+        wait_for(&self.device, index, self.wait_limit, "march pass")?;
         let ms = started.elapsed().as_secs_f64() * 1e3;
         let mut copy = self
             .device
@@ -210,7 +246,8 @@ impl Marcher {
                 label: Some("craterfield march3d readback"),
             });
         target.encode_copy(&mut copy);
-        self.queue.submit([copy.finish()]);
+        let index = self.queue.submit([copy.finish()]);
+        wait_for(&self.device, index, self.wait_limit, "readback copy")?;
         Ok((target.read(&self.device)?.into_raw(), ms))
     }
 
@@ -248,9 +285,9 @@ impl Marcher {
         if !(finite && camera.tan_half_fov.is_finite() && camera.tan_half_fov > 0.0) {
             return Err(MarchGpuError::Camera);
         }
-        let (device, layout) = (&self.device, &self.pipeline_layout);
+        let (device, layout, budget) = (&self.device, &self.pipeline_layout, &self.budget);
         self.pipelines
-            .get_or_try_insert_with(plan.key, || compile(device, layout, plan))?;
+            .get_or_try_insert_with(plan.key, || compile(device, layout, plan, budget))?;
         let frame = MarchFrame::new(camera, width, height);
         self.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
@@ -301,14 +338,61 @@ impl Marcher {
     }
 }
 
-/// The compute pipeline of `plan`'s emitted module, with the device's validation errors as
-/// values.
+/// Waits until submission `index` has finished, for at most `limit`.
+fn wait_for(
+    device: &wgpu::Device,
+    index: wgpu::SubmissionIndex,
+    limit: Duration,
+    what: &'static str,
+) -> Result<(), MarchGpuError> {
+    match device.poll(wgpu::PollType::Wait {
+        submission_index: Some(index),
+        timeout: Some(limit),
+    }) {
+        Ok(_) => Ok(()),
+        Err(wgpu::PollError::Timeout) => Err(MarchGpuError::Timeout { what, limit }),
+        Err(e) => Err(GpuError::DeviceLost(e.to_string()).into()),
+    }
+}
+
+/// `plan`'s emitted module ([`march_wgsl`]), refused with [`MarchGpuError::TooLarge`] when it
+/// is past `budget`: what [`Marcher`] hands the driver goes through this. It needs no
+/// device, so a plan can be checked before asking for one.
+pub fn march_wgsl_within(plan: &Plan, budget: &ShaderBudget) -> Result<String, MarchGpuError> {
+    let source = march_wgsl(plan)?;
+    let too_large = |what, size: u64, limit: u64| MarchGpuError::TooLarge {
+        key: plan.key,
+        what,
+        size,
+        limit,
+    };
+    let inlined = march_inlined_statements(plan, &source);
+    if inlined > budget.max_inlined_statements {
+        return Err(too_large(
+            "inlined statements",
+            inlined,
+            budget.max_inlined_statements,
+        ));
+    }
+    if source.len() > budget.max_bytes {
+        return Err(too_large(
+            "text bytes",
+            source.len() as u64,
+            budget.max_bytes as u64,
+        ));
+    }
+    Ok(source)
+}
+
+/// The compute pipeline of `plan`'s emitted module (within `budget`), with the device's
+/// validation errors as values.
 fn compile(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
     plan: &Plan,
+    budget: &ShaderBudget,
 ) -> Result<wgpu::ComputePipeline, MarchGpuError> {
-    let source = march_wgsl(plan)?;
+    let source = march_wgsl_within(plan, budget)?;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("craterfield march3d"),

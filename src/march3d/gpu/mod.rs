@@ -6,16 +6,25 @@
 //! ([`Marcher::encode`]), or renders and reads back pixels ([`Marcher::render_to_rgba`],
 //! [`Marcher::render_timed`]). Module map: `uniforms` (the camera uniform shared with
 //! WGSL), `marcher` (pipelines, targets and passes).
+//!
+//! Two limits keep a render from stalling without a word. A plan's module past the
+//! marcher's [`ShaderBudget`](crate::emit::ShaderBudget) (default
+//! [`MARCH3D_BUDGET`](crate::emit::codegen3d::MARCH3D_BUDGET)) is refused with
+//! [`MarchGpuError::TooLarge`] before the driver compiles it ([`march_wgsl_within`] checks a
+//! plan without a device). Each wait for submitted work ends after the marcher's wait limit
+//! with [`MarchGpuError::Timeout`].
 
 mod marcher;
 mod uniforms;
+
+use std::time::Duration;
 
 use thiserror::Error;
 
 use crate::emit::plan3d::PlanError;
 use crate::gpu::GpuError;
 
-pub use marcher::Marcher;
+pub use marcher::{DEFAULT_WAIT, Marcher, march_wgsl_within};
 pub use uniforms::MarchFrame;
 
 /// Why the GPU raymarcher could not render.
@@ -59,6 +68,32 @@ pub enum MarchGpuError {
         key: u64,
         /// The driver's message.
         message: String,
+    },
+    /// The plan's emitted shader is past the marcher's
+    /// [`ShaderBudget`](crate::emit::ShaderBudget) (by default
+    /// [`MARCH3D_BUDGET`](crate::emit::codegen3d::MARCH3D_BUDGET)). It was refused before
+    /// the driver saw it: a compiler handed such a module can spend minutes on it.
+    #[error(
+        "plan {key:#018x}: the shader would be too large for a GPU compiler: {size} {what}, past the budget of {limit} (render it with the CPU tracer)"
+    )]
+    TooLarge {
+        /// The plan's key.
+        key: u64,
+        /// `inlined statements` or `text bytes`.
+        what: &'static str,
+        /// What the plan's module needs.
+        size: u64,
+        /// The budget.
+        limit: u64,
+    },
+    /// The GPU did not finish the submitted work within the marcher's wait limit
+    /// ([`Marcher::set_wait_limit`]); the work may still be running.
+    #[error("the GPU did not finish the {what} within {limit:?}")]
+    Timeout {
+        /// What was waited for.
+        what: &'static str,
+        /// The limit.
+        limit: Duration,
     },
     /// Reading back pixels or timestamps failed, or the device was lost.
     #[error(transparent)]
