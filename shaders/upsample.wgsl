@@ -38,10 +38,13 @@ fn finish(l: Lookup, d: f32, y: f32) -> vec4<f32> {
 }
 
 fn finish_with(l: Lookup, d: f32, y: f32, material: f32) -> vec4<f32> {
-    let t00 = load(l.c);
-    let t10 = load(l.c + vec2<i32>(1, 0));
-    let t01 = load(l.c + vec2<i32>(0, 1));
-    let t11 = load(l.c + vec2<i32>(1, 1));
+    return finish_quad(l, d, y, material, load(l.c), load(l.c + vec2<i32>(1, 0)),
+        load(l.c + vec2<i32>(0, 1)), load(l.c + vec2<i32>(1, 1)));
+}
+
+// finish_with over quad texels the caller already loaded.
+fn finish_quad(l: Lookup, d: f32, y: f32, material: f32,
+    t00: vec4<f32>, t10: vec4<f32>, t01: vec4<f32>, t11: vec4<f32>) -> vec4<f32> {
     let g = mix(mix(t00.yz, t10.yz, l.f.x), mix(t01.yz, t11.yz, l.f.x), l.f.y);
     let n = select(vec2<f32>(0.0), normalize(g), dot(g, g) > 0.0);
     return shade_pixel(d / frame.upp, n, base_color(material), y);
@@ -121,80 +124,92 @@ fn smooth01(t: f32) -> f32 {
     return t * t * (3.0 - 2.0 * t);
 }
 
+// Plane r pulled towards `other` by pair value s: up where the gradients diverge, down where
+// they converge (one step of the twin's combined_plane; zero weights skipped).
+fn pull_up(r: f32, other: f32, s: f32) -> f32 {
+    let a = smooth01(max(s, 0.0));
+    if a > 0.0 {
+        return r + a * (max(r, other) - r);
+    }
+    return r;
+}
+
+fn pull_down(r: f32, other: f32, s: f32) -> f32 {
+    let b = smooth01(max(-s, 0.0));
+    if b > 0.0 {
+        return r + b * (min(r, other) - r);
+    }
+    return r;
+}
+
+// R_k: plane pk against the other three (o, in ascending texel order) with pair values s.
+fn combined_plane(pk: f32, o: vec3<f32>, s: vec3<f32>) -> f32 {
+    let up = pull_up(pull_up(pull_up(pk, o.x, s.x), o.y, s.y), o.z, s.z);
+    return pull_down(pull_down(pull_down(up, o.x, s.x), o.y, s.y), o.z, s.z);
+}
+
 // Tangent-plane reconstruction: per quad texel k, its plane combined with the others' by max
 // where gradients diverge and min where they converge; the results blended bilinearly.
+// Straight-line code: no function-scope arrays, no loops (each would get a loop_bound counter
+// from naga and defeat unrolling), and the four quad texels loaded once.
 @fragment
 fn fs_planes(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let l = lookup(pos);
-    var offs = array<vec2<i32>, 4>(vec2<i32>(0, 0), vec2<i32>(1, 0), vec2<i32>(0, 1), vec2<i32>(1, 1));
-    var planes: array<f32, 4>;
+    let t0 = load(l.c);
+    let t1 = load(l.c + vec2<i32>(1, 0));
+    let t2 = load(l.c + vec2<i32>(0, 1));
+    let t3 = load(l.c + vec2<i32>(1, 1));
+    let c0 = texel_center(l.c.x, l.c.y);
+    let c1 = texel_center(l.c.x + 1, l.c.y);
+    let c2 = texel_center(l.c.x, l.c.y + 1);
+    let c3 = texel_center(l.c.x + 1, l.c.y + 1);
+    let p = vec4<f32>(
+        t0.x + dot(t0.yz, l.p - c0),
+        t1.x + dot(t1.yz, l.p - c1),
+        t2.x + dot(t2.yz, l.p - c2),
+        t3.x + dot(t3.yz, l.p - c3),
+    );
     // The material of the texel whose plane is lowest here (the union's rule, extrapolated).
     var material = 0.0;
     var lowest = 3.0e38;
-    for (var k = 0; k < 4; k++) {
-        let c = l.c + offs[k];
-        let t = load(c);
-        planes[k] = t.x + dot(t.yz, l.p - texel_center(c.x, c.y));
-        if planes[k] < lowest {
-            lowest = planes[k];
-            material = t.w;
-        }
-    }
+    if p.x < lowest { lowest = p.x; material = t0.w; }
+    if p.y < lowest { lowest = p.y; material = t1.w; }
+    if p.z < lowest { lowest = p.z; material = t2.w; }
+    if p.w < lowest { lowest = p.w; material = t3.w; }
     let s0 = textureLoad(pairs, l.c, 0);
     let s1 = textureLoad(pairs, l.c + vec2<i32>(1, 0), 0);
     let s2 = textureLoad(pairs, l.c + vec2<i32>(0, 1), 0);
-    // s[k][m], symmetric: 01 right(0), 02 down(0), 03 diag(0), 12 anti(0), 13 down(1), 23 right(2).
-    var s = array<vec4<f32>, 4>(
-        vec4<f32>(0.0, s0.x, s0.y, s0.z),
-        vec4<f32>(s0.x, 0.0, s0.w, s1.y),
-        vec4<f32>(s0.y, s0.w, 0.0, s2.x),
-        vec4<f32>(s0.z, s1.y, s2.x, 0.0),
-    );
+    // Pairs: 01 right(0) s0.x, 02 down(0) s0.y, 03 diag(0) s0.z, 12 anti(0) s0.w,
+    // 13 down(1) s1.y, 23 right(2) s2.x.
+    let r0 = combined_plane(p.x, p.yzw, vec3<f32>(s0.x, s0.y, s0.z));
+    let r1 = combined_plane(p.y, p.xzw, vec3<f32>(s0.x, s0.w, s1.y));
+    let r2 = combined_plane(p.z, p.xyw, vec3<f32>(s0.y, s0.w, s2.x));
+    let r3 = combined_plane(p.w, p.xyz, vec3<f32>(s0.z, s1.y, s2.x));
     let w = vec4<f32>(
         (1.0 - l.f.x) * (1.0 - l.f.y),
         l.f.x * (1.0 - l.f.y),
         (1.0 - l.f.x) * l.f.y,
         l.f.x * l.f.y,
     );
-    var d = 0.0;
-    for (var k = 0; k < 4; k++) {
-        var r = planes[k];
-        for (var m = 0; m < 4; m++) {
-            let a = smooth01(max(s[k][m], 0.0));
-            if m != k && a > 0.0 {
-                r += a * (max(r, planes[m]) - r);
-            }
-        }
-        for (var m = 0; m < 4; m++) {
-            let b = smooth01(max(-s[k][m], 0.0));
-            if m != k && b > 0.0 {
-                r += b * (min(r, planes[m]) - r);
-            }
-        }
-        d += w[k] * r;
-    }
-    return finish_with(l, lipschitz_clamp(d, l.p, l.c), floor(pos.y), material);
+    // Summed in texel order, as before (not dot(), whose order is unspecified).
+    let d = w.x * r0 + w.y * r1 + w.z * r2 + w.w * r3;
+    let reach = vec4<f32>(length(l.p - c0), length(l.p - c1), length(l.p - c2), length(l.p - c3));
+    let clamped = lipschitz_clamp(d, vec4<f32>(t0.x, t1.x, t2.x, t3.x),
+        vec4<f32>(length(t0.yz), length(t1.yz), length(t2.yz), length(t3.yz)), reach);
+    return finish_quad(l, clamped, floor(pos.y), material, t0, t1, t2, t3);
 }
 
 // The field changes by at most `slope` per world unit around the quad, so at p it lies within
 // d_k +- slope |p - C_k| of every quad texel: clamp the reconstruction into that interval.
 // The slope is the quad's largest gradient magnitude (the field's local rate of change, 1 for
-// a distance field) with a 5% margin, at least 1 and at most the global bound.
-fn lipschitz_clamp(d: f32, p: vec2<f32>, c: vec2<i32>) -> f32 {
-    var local = 1.0;
-    for (var k = 0; k < 4; k++) {
-        local = max(local, length(load(c + vec2<i32>(k & 1, k >> 1u)).yz));
-    }
+// a distance field) with a 5% margin, at least 1 and at most the global bound. `dk`, `gk` and
+// `dist` are the quad texels' distances, gradient lengths and distances |p - C_k|.
+fn lipschitz_clamp(d: f32, dk: vec4<f32>, gk: vec4<f32>, dist: vec4<f32>) -> f32 {
+    let local = max(max(max(max(1.0, gk.x), gk.y), gk.z), gk.w);
     let slope = min(local * 1.05, frame.slope);
-    var lo = -3.0e38;
-    var hi = 3.0e38;
-    for (var k = 0; k < 4; k++) {
-        let t = c + vec2<i32>(k & 1, k >> 1u);
-        let reach = slope * length(p - texel_center(t.x, t.y));
-        let dk = load(t).x;
-        lo = max(lo, dk - reach);
-        hi = min(hi, dk + reach);
-    }
+    let reach = slope * dist;
+    let lo = max(max(max(max(-3.0e38, dk.x - reach.x), dk.y - reach.y), dk.z - reach.z), dk.w - reach.w);
+    let hi = min(min(min(min(3.0e38, dk.x + reach.x), dk.y + reach.y), dk.z + reach.z), dk.w + reach.w);
     if lo > hi {
         return 0.5 * (lo + hi);
     }
