@@ -47,13 +47,17 @@ fn shade_pixel(d_px: f32, n: vec2<f32>, base: vec3<f32>, y: f32) -> vec4<f32> {
     return finish_color(mix(sky, color, coverage));
 }
 
-// A 0..255 colour as the render target stores it.
+// A 0..255 colour as the render target stores it. For 8-bit targets the channel is rounded
+// here, half away from zero as the CPU twin rounds (`to_u8` in src/render2d/twin/shade.rs),
+// and handed over as the exact level k / 255: how a driver converts a float to unorm8 is
+// its own (an NVIDIA driver rounded a tie k + 1/2 down where lavapipe and the twin round it
+// up, one level off in whole rows of sky), but every conforming one maps k / 255 to k.
 fn finish_color(c: vec3<f32>) -> vec4<f32> {
-    let out = clamp(c, vec3<f32>(0.0), vec3<f32>(255.0)) / 255.0;
+    let clamped = clamp(c, vec3<f32>(0.0), vec3<f32>(255.0));
     if frame.srgb_target != 0u {
-        return vec4<f32>(srgb_to_linear(out), 1.0);
+        return vec4<f32>(srgb_to_linear(clamped / 255.0), 1.0);
     }
-    return vec4<f32>(out, 1.0);
+    return vec4<f32>(floor(clamped + vec3<f32>(0.5)) / 255.0, 1.0);
 }
 
 // What shade_pixel gives wherever coverage is 0 (mix(sky, c, 0) is sky).
