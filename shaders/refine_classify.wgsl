@@ -5,8 +5,8 @@
 // `cs_open` lists the blocks still open with the corners each samples and `cs_corner_args`
 // sizes the corner pass over that list; level 1 (`cs_blocks`) bounds the open blocks from
 // the exact samples at their four corners (written by `cs_corners`, refine_corners.wgsl)
-// and their signs, appends the blocks
-// it cannot prove to the list the exact pass evaluates, and counts every block once;
+// and their signs, appends the blocks it cannot prove, and the shaded ones whose corners are
+// creased (`creased`), to the list the exact pass evaluates, and counts every block once;
 // `cs_args` sizes the exact pass's dispatch.
 
 @group(0) @binding(1) var texels: texture_2d<f32>;
@@ -123,6 +123,16 @@ fn finish_block(id: vec2<u32>, dims: vec2<u32>) {
         }
     }
     var state = decide(lo, hi, open.signs, rect, true);
+    // Where the shade has a hard edge the draw's interpolant would smear it over the block.
+    if state.kind == CLASS_SHADED
+        && creased(
+            corners[corner_index(id.x, id.y)],
+            corners[corner_index(id.x + 1u, id.y)],
+            corners[corner_index(id.x, id.y + 1u)],
+            corners[corner_index(id.x + 1u, id.y + 1u)],
+        ) {
+        state = BlockState(CLASS_EXACT, MATERIAL_NONE, state.lo, state.hi, state.signs);
+    }
     if state.kind == CLASS_EXACT {
         let slot = atomicAdd(&work.exact_blocks, 1u);
         exact_list[slot] = index;
@@ -134,6 +144,39 @@ fn finish_block(id: vec2<u32>, dims: vec2<u32>) {
     }
     blocks[index] = state;
     count_final(state.kind);
+}
+
+// The largest difference between the unit normals at the corners of a shaded block
+// (about 23 degrees; the twin's `CREASE`).
+const CREASE: f32 = 0.4;
+
+fn unit_or_zero(g: vec2<f32>) -> vec2<f32> {
+    return select(vec2<f32>(0.0), normalize(g), dot(g, g) > 0.0);
+}
+
+// Whether a block with the exact corner samples a..d (distance, gradient) must be evaluated
+// rather than drawn from their interpolant (the twin's `Prover::creased`): some corner lies
+// in the lit rim and two corners' normals (zero where the gradient is) differ by more than
+// CREASE, as at the contour where the distance reaches its clamp -M (the gradient is zero
+// past it) and along creases where the nearest surface changes.
+fn creased(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, d: vec4<f32>) -> bool {
+    let lit_at = -0.5 * frame.shade_depth_px * frame.upp;
+    if max(max(a.x, b.x), max(c.x, d.x)) <= lit_at {
+        return false;
+    }
+    let na = unit_or_zero(a.yz);
+    let nb = unit_or_zero(b.yz);
+    let nc = unit_or_zero(c.yz);
+    let nd = unit_or_zero(d.yz);
+    let m = CREASE * CREASE;
+    let e = na - nb;
+    let f = na - nc;
+    let g = na - nd;
+    let h = nb - nc;
+    let i = nb - nd;
+    let j = nc - nd;
+    return dot(e, e) > m || dot(f, f) > m || dot(g, g) > m || dot(h, h) > m || dot(i, i) > m
+        || dot(j, j) > m;
 }
 
 // The exact pass's workgroup counts, as a 2D grid when one dimension cannot hold them.

@@ -15,7 +15,7 @@ use craterfield::gpu::READBACK_FORMAT;
 use craterfield::gpu::{GpuContext, GpuError, Offscreen, Timestamps};
 use craterfield::render2d::gpu::TerrainRenderer;
 use craterfield::render2d::gpu::{Pipeline, render_to_image};
-use craterfield::render2d::twin::{render_refine, render_twin};
+use craterfield::render2d::twin::{exact_field, render_refine, render_twin};
 use craterfield::render2d::{
     Camera, ExactRenderOptions, Reconstruction, RenderOptions, Scale, Upsample, render_exact,
 };
@@ -272,6 +272,120 @@ fn refine_on_cratered_ground_is_the_direct_render(ctx: &GpuContext) -> TestResul
         return Err(format!("the GPU proved much less than the twin: {gpu:?} vs {twin:?}").into());
     }
     Ok(())
+}
+
+/// How far the interior shade of a picture is from the exact render's, over the pixels
+/// the exact field puts deeper than the outline (there only the depth shade may differ);
+/// the same measure as `tests/render_refine.rs` takes of the twin.
+#[derive(Debug, Default)]
+struct ShadeSteps {
+    /// Pixels deeper than the outline.
+    solid: usize,
+    /// Of those, pixels more than 8 levels from the exact colour.
+    off: usize,
+    /// Neighbouring pixel pairs of them whose error (picture minus exact) changes by more
+    /// than 8 levels from one to the other, across the edge of a `4 x 4` block aligned
+    /// with the image and inside one.
+    edge_steps: usize,
+    inner_steps: usize,
+    /// All neighbouring pairs across block edges and inside blocks.
+    edge_pairs: usize,
+    inner_pairs: usize,
+}
+
+/// The errors of `image` against `exact` where `depth_px` (the exact distance, pixels) is
+/// below `deep_px` (see [`ShadeSteps`]).
+fn shade_steps(image: &RgbaImage, exact: &RgbaImage, depth_px: &[f32], deep_px: f32) -> ShadeSteps {
+    let (w, h) = (image.width() as usize, image.height() as usize);
+    let err = |x: usize, y: usize| {
+        let (a, b) = (
+            image.get_pixel(x as u32, y as u32),
+            exact.get_pixel(x as u32, y as u32),
+        );
+        [0, 1, 2].map(|c| i32::from(a[c]) - i32::from(b[c]))
+    };
+    let solid = |x: usize, y: usize| depth_px[y * w + x] < deep_px;
+    let mut s = ShadeSteps::default();
+    for y in 0..h {
+        for x in 0..w {
+            if !solid(x, y) {
+                continue;
+            }
+            let e = err(x, y);
+            s.solid += 1;
+            s.off += usize::from(e.iter().any(|v| v.abs() > 8));
+            for (nx, ny, edge) in [(x + 1, y, (x + 1) % 4 == 0), (x, y + 1, (y + 1) % 4 == 0)] {
+                if nx >= w || ny >= h || !solid(nx, ny) {
+                    continue;
+                }
+                let f = err(nx, ny);
+                let step = (0..3).any(|c| (e[c] - f[c]).abs() > 8);
+                if edge {
+                    s.edge_pairs += 1;
+                    s.edge_steps += usize::from(step);
+                } else {
+                    s.inner_pairs += 1;
+                    s.inner_steps += usize::from(step);
+                }
+            }
+        }
+    }
+    s
+}
+
+/// The interior shade of the GPU's proven solid blocks has no block steps when zoomed
+/// out, where the clamp contour of the terrain's distance and the creases under peaks cut
+/// the lit rim with hard edges: few pixels off the exact render by more than 8 levels, and
+/// the error does not jump across block edges more often than inside blocks.
+fn refine_shade_has_no_block_steps(ctx: &GpuContext) -> TestResult {
+    let level = Level::default_level();
+    let terrain = cratered(&level, 600);
+    let pal = palette(&level);
+    let options = RenderOptions {
+        reconstruction: Reconstruction::Refine,
+        ..RenderOptions::default()
+    };
+    let deep = -(options.shade.outline_px + 0.5);
+    let b = level.bounds();
+    let mut failures = Vec::new();
+    for width in [470, 940, 1920] {
+        let cam = Camera::fit(b.min, b.max, width);
+        let exact = render_exact(&terrain, &pal, &cam, &ExactRenderOptions::default()).unwrap();
+        let truth = exact_field(&terrain, &cam, 0).map_err(|e| e.to_string())?;
+        let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())
+            .map_err(|e| e.to_string())?;
+        r.prepare(&terrain, &pal, &cam).map_err(|e| e.to_string())?;
+        let gpu = render_to_image(&r, cam.width, cam.height, Pipeline::Reduced)
+            .map_err(|e| e.to_string())?;
+        let stats = r.refine_stats().map_err(|e| e.to_string())?;
+        let s = shade_steps(&gpu, &exact, &truth.distance_px, deep);
+        eprintln!(
+            "width {width} (upp {:.2}): {s:?}, {:.2}% of blocks exact, {} evaluations",
+            cam.units_per_pixel,
+            100.0 * stats.refined_block_fraction(),
+            stats.exact_evaluations
+        );
+        // Block steps: the error jumps across block edges more than twice as often as
+        // inside blocks (ten jumps of slack).
+        let inner_rate = s.inner_steps as f64 / s.inner_pairs.max(1) as f64;
+        let stepped = s.edge_steps as f64 > 2.0 * inner_rate * s.edge_pairs as f64 + 10.0;
+        if s.off > 10 + s.solid / 10_000 || stepped {
+            let dir = out_dir();
+            let _ = gpu.save(dir.join(format!("steps-{width}.gpu.png")));
+            let _ = exact.save(dir.join(format!("steps-{width}.exact.png")));
+            failures.push(format!("width {width}: {s:?}"));
+        }
+    }
+    if failures.is_empty() {
+        return Ok(());
+    }
+    Err(format!(
+        "block steps in the interior shade (more than 10 + 0.01% of the interior pixels \
+         off by more than 8 levels, or the error jumping across block edges more than \
+         twice as often as inside blocks; images in {}): {failures:#?}",
+        out_dir().display()
+    )
+    .into())
 }
 
 fn example_levels_match_twin(ctx: &GpuContext) -> TestResult {
@@ -735,6 +849,10 @@ fn main() {
         (
             "refine_on_cratered_ground_is_the_direct_render",
             refine_on_cratered_ground_is_the_direct_render,
+        ),
+        (
+            "refine_shade_has_no_block_steps",
+            refine_shade_has_no_block_steps,
         ),
         (
             "gpu_matches_twin_every_mode_and_scale",

@@ -20,8 +20,10 @@
 //!   in one cell and `2 max(L, 1) R_k < mu_k` ([`Terrain::material_margin`]), and every pixel
 //!   takes `m_k`. Each pixel is then fully covered with no outline. Blocks deeper than the
 //!   interior depth everywhere are shaded from the planes interpolant; the others from exact
-//!   samples at their four corner pixels, interpolated bilinearly; the distance is clamped
-//!   to `hi`.
+//!   samples on the GPU's corner grid (the pixel centres `(BLOCK i, BLOCK j)`), interpolated
+//!   bilinearly over each grid square, the distance clamped to `hi`; the pixels of squares
+//!   whose corners are creased ([`Prover::creased`]: a hard edge of the exact shade runs
+//!   through them) are evaluated instead.
 //! * Otherwise **uncertain**: every pixel is sampled with the terrain's batch evaluator and
 //!   shaded exactly as [`crate::render2d::render_exact`] shades it.
 //!
@@ -112,7 +114,7 @@ enum Class {
         hi: f32,
         material: Material,
         /// Whether the block reaches depths whose shade depends on the distance: it is then
-        /// shaded from exact samples at its corners instead of the texels.
+        /// shaded from exact samples on the corner grid instead of the texels.
         shaded: bool,
     },
     Uncertain,
@@ -152,6 +154,8 @@ pub(super) struct Prover<'a, F: Sdf> {
     solid_at: f32,
     /// Deeper than this every solid pixel of a material and row has one colour.
     deep_at: f32,
+    /// Shallower than this the shade depends on the normal (the lit rim).
+    lit_at: f32,
     origin: [f64; 2],
     cell_size: f64,
     dims: [i64; 2],
@@ -183,6 +187,7 @@ impl<'a, F: Sdf> Prover<'a, F> {
             sky_at: 0.5 * upp,
             solid_at: -(shade.outline_px.max(0.0) + 0.5) * upp,
             deep_at: -Shader::new(shade, 1).interior_depth() * upp,
+            lit_at: -0.5 * shade.shade_depth_px * upp,
             origin: [f64::from(grid.origin().x), f64::from(grid.origin().y)],
             cell_size: f64::from(grid.cell_size()),
             dims: [i64::from(nx), i64::from(ny)],
@@ -422,6 +427,29 @@ impl<'a, F: Sdf> Prover<'a, F> {
     }
 }
 
+impl<F: Sdf> Prover<'_, F> {
+    /// Whether a grid square with the exact samples `s` at its corners must be evaluated
+    /// rather than interpolated: some corner lies in the lit rim and two corners' normals
+    /// differ by more than [`CREASE`]. The interpolant is smooth, the exact shade is not
+    /// where the normal jumps: at the contour where the distance reaches its clamp `-M`
+    /// (past it the gradient is zero, so zoomed out, where the band is shallower than the
+    /// rim, the rim stops there with a hard edge) and along creases (where the nearest
+    /// surface changes, e.g. under the peak between two craters). Interpolated across, such
+    /// edges become steps along the squares.
+    fn creased(&self, s: &[Sample; 4]) -> bool {
+        if !s.iter().any(|s| s.distance > self.lit_at) {
+            return false;
+        }
+        let n = s.map(|s| s.gradient.normalize_or_zero());
+        (0..4).any(|a| (a + 1..4).any(|b| (n[a] - n[b]).length_squared() > CREASE * CREASE))
+    }
+}
+
+/// The largest difference between the unit normals (zero where the gradient is) at the
+/// corners of a grid square that is interpolated: about 23 degrees, so that the lit term
+/// `0.35 dot(n, light)` of an interpolated pixel is within about 7% of the base colour.
+const CREASE: f32 = 0.4;
+
 /// The distance from `c` to the farthest corner of `rect` (`[x0, y0, x1, y1]`): the corner
 /// with the larger offset on each axis, whose rounded distance is also the largest of the
 /// four corners' rounded distances (squares and sums round monotonically).
@@ -502,9 +530,11 @@ struct RefineScratch {
     deferred: Vec<Deferred>,
     corners: Vec<Vec2>,
     corner_samples: Vec<Sample>,
+    /// The corner grid of the unit: which of `corners` each grid point is.
+    grid: CornerGrid,
 }
 
-/// A solid block shaded from the exact samples at its four corner pixels.
+/// A solid block shaded from the exact samples on the corner grid.
 struct Deferred {
     xs: Range<usize>,
     /// Rows relative to the unit's first.
@@ -513,8 +543,34 @@ struct Deferred {
     y0: usize,
     hi: f32,
     material: Material,
-    /// Index of its first corner in `RefineScratch::corners`.
-    first: usize,
+}
+
+/// The corner grid of one unit of work: the pixel centres `(BLOCK i, BLOCK j)`, the
+/// corners of the `BLOCK x BLOCK` squares aligned with the image (the GPU's blocks,
+/// `shaders/refine_corners.wgsl`), each sampled at most once per unit.
+#[derive(Default)]
+struct CornerGrid {
+    /// The first grid row (`j`) of the unit.
+    j0: usize,
+    /// Grid points per row (`i = 0..cols`).
+    cols: usize,
+    /// Index in `RefineScratch::corners` per grid point, `u32::MAX` when not sampled.
+    slots: Vec<u32>,
+}
+
+impl CornerGrid {
+    /// An empty grid for image rows `rows` of an image `width` pixels wide.
+    fn reset(&mut self, rows: Range<usize>, width: usize) {
+        self.j0 = rows.start / BLOCK;
+        let j1 = rows.end.saturating_sub(1) / BLOCK + 1;
+        self.cols = width.saturating_sub(1) / BLOCK + 2;
+        self.slots.clear();
+        self.slots.resize((j1 - self.j0 + 1) * self.cols, u32::MAX);
+    }
+
+    fn slot(&self, i: usize, j: usize) -> usize {
+        (j - self.j0) * self.cols + i
+    }
 }
 
 /// Class counts of one unit of work, added to [`Counters`] when the unit is done.
@@ -543,6 +599,8 @@ struct Refiner<'a, F: Sdf> {
     prover: Prover<'a, F>,
     tex: &'a Textures<'a>,
     layout: &'a Layout,
+    /// The frame's camera (the corner grid's points lie also past the image's edge).
+    camera: Camera,
     counters: Counters,
 }
 
@@ -563,6 +621,7 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
             prover,
             tex,
             layout,
+            camera: *camera,
             counters: Counters::default(),
         }
     }
@@ -582,14 +641,19 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         scratch.deferred.clear();
         scratch.corners.clear();
         scratch.base = bands.first().map_or(0, |b| b.pixels.start);
+        let end = bands.last().map_or(0, |b| b.pixels.end);
+        let width = self.layout.columns.world.len();
+        scratch
+            .grid
+            .reset(scratch.base..end.max(scratch.base), width);
         for rows in bands {
             for columns in &self.layout.columns.runs {
                 let block = Block::at(columns, rows);
                 self.quad(scratch, block, sink);
             }
         }
-        self.flush(&mut scratch.tally);
         self.draw_deferred(scratch, sink)?;
+        self.flush(&mut scratch.tally);
         self.evaluate(scratch, sink)
     }
 
@@ -704,7 +768,6 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
         col_blocks: &[Range<usize>],
         ys: &Range<usize>,
     ) {
-        let layout = self.layout;
         for (i, class) in classes.iter().enumerate() {
             let &Class::Solid {
                 hi,
@@ -717,12 +780,16 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
             let xs = col_blocks[i % col_blocks.len()].clone();
             let start = ys.start + (i / col_blocks.len()) * BLOCK;
             let rows_abs = start..(start + BLOCK).min(ys.end);
-            let first = scratch.corners.len();
-            for y in [rows_abs.start, rows_abs.end - 1] {
-                for x in [xs.start, xs.end - 1] {
-                    scratch
-                        .corners
-                        .push(Vec2::new(layout.columns.world[x], layout.rows.world[y]));
+            // The corners of every grid square the block's pixels fall in.
+            for j in rows_abs.start / BLOCK..=(rows_abs.end - 1) / BLOCK + 1 {
+                for i in xs.start / BLOCK..=(xs.end - 1) / BLOCK + 1 {
+                    let slot = scratch.grid.slot(i, j);
+                    if scratch.grid.slots[slot] == u32::MAX {
+                        scratch.grid.slots[slot] = scratch.corners.len() as u32;
+                        // The pixel centre (BLOCK i, BLOCK j), also past the image's edge.
+                        let (x, y) = ((i * BLOCK) as u32, (j * BLOCK) as u32);
+                        scratch.corners.push(self.camera.pixel_to_world(x, y));
+                    }
                 }
             }
             scratch.deferred.push(Deferred {
@@ -731,14 +798,15 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
                 y0: rows_abs.start,
                 hi,
                 material,
-                first,
             });
         }
     }
 
-    /// Samples the deferred blocks' corners and draws the blocks by bilinear interpolation
-    /// of the exact corner distances and gradients (the distance clamped to the proof's
-    /// bound); pixels whose material lookup disagrees are queued for exact evaluation.
+    /// Samples the deferred blocks' grid corners and draws each pixel by bilinear
+    /// interpolation of the exact distances and gradients at the corners of its grid square
+    /// (the distance clamped to the proof's bound), as the GPU draws its shaded blocks
+    /// (`shaders/refine_draw.wgsl`). Pixels of creased squares ([`Prover::creased`]) and
+    /// pixels whose material lookup disagrees are queued for exact evaluation.
     fn draw_deferred<S: Sink>(
         &self,
         scratch: &mut RefineScratch,
@@ -762,30 +830,59 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
             .corners
             .fetch_add(scratch.corners.len() as u64, Ordering::Relaxed);
         let deferred = std::mem::take(&mut scratch.deferred);
+        let grid = std::mem::take(&mut scratch.grid);
+        let samples = std::mem::take(&mut scratch.corner_samples);
+        let sample = |i: usize, j: usize| samples[grid.slots[grid.slot(i, j)] as usize];
         for b in &deferred {
-            let s: [Sample; 4] = std::array::from_fn(|k| scratch.corner_samples[b.first + k]);
-            let span = |r: &Range<usize>| (r.end - 1 - r.start).max(1) as f32;
-            let (wx, wy) = (span(&b.xs), span(&b.rows));
+            let mut creased = 0;
             for (yi, y) in b.rows.clone().zip(b.y0..) {
-                let ty = (yi - b.rows.start) as f32 / wy;
+                let (j, ty) = (y / BLOCK, (y % BLOCK) as f32 / BLOCK as f32);
+                // The grid square of the previous pixel, its corner samples and verdict.
+                let mut square: Option<(usize, [Sample; 4], bool)> = None;
                 for x in b.xs.clone() {
-                    let tx = (x - b.xs.start) as f32 / wx;
-                    let w = [
-                        (1.0 - tx) * (1.0 - ty),
-                        tx * (1.0 - ty),
-                        (1.0 - tx) * ty,
-                        tx * ty,
-                    ];
-                    let d: f32 = (0..4).map(|k| w[k] * s[k].distance).sum();
-                    let g: Vec2 = (0..4).map(|k| w[k] * s[k].gradient).sum();
+                    let (i, tx) = (x / BLOCK, (x % BLOCK) as f32 / BLOCK as f32);
+                    let (s, exact) = match square {
+                        Some((at, s, exact)) if at == i => (s, exact),
+                        _ => {
+                            let s = [
+                                sample(i, j),
+                                sample(i + 1, j),
+                                sample(i, j + 1),
+                                sample(i + 1, j + 1),
+                            ];
+                            let exact = self.prover.creased(&s);
+                            square = Some((i, s, exact));
+                            (s, exact)
+                        }
+                    };
                     let p = Vec2::new(self.layout.columns.world[x], self.layout.rows.world[y]);
+                    if exact {
+                        creased += 1;
+                        queue(scratch, p, x, yi);
+                        continue;
+                    }
+                    let v = |s: &Sample| [s.distance, s.gradient.x, s.gradient.y];
+                    let (v00, v10, v01, v11) = (v(&s[0]), v(&s[1]), v(&s[2]), v(&s[3]));
+                    let [d, gx, gy] = std::array::from_fn(|c| {
+                        mix(mix(v00[c], v10[c], tx), mix(v01[c], v11[c], tx), ty)
+                    });
+                    let g = Vec2::new(gx, gy);
                     match self.prover.pixel_material(b.material, p) {
                         Some(m) => sink.proven(x, yi, d.min(b.hi), g.normalize_or_zero(), m),
                         None => queue(scratch, p, x, yi),
                     }
                 }
             }
+            if creased > 0 {
+                // Evaluated (in part) after all: counted as refined.
+                let t = &mut scratch.tally;
+                t.solid -= 1;
+                t.refined += 1;
+                t.refined_pixels += creased;
+            }
         }
+        scratch.corner_samples = samples;
+        scratch.grid = grid;
         scratch.deferred = deferred;
         scratch.deferred.clear();
         scratch.corners.clear();
@@ -865,6 +962,11 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
             exact_evaluations: texels + margins + refined_pixels + get(&c.corners),
         }
     }
+}
+
+/// `a + (b - a) t`.
+fn mix(a: f32, b: f32, t: f32) -> f32 {
+    a + (b - a) * t
 }
 
 fn queue(scratch: &mut RefineScratch, p: Vec2, x: usize, yi: usize) {
