@@ -10,6 +10,7 @@ mod common;
 use std::path::PathBuf;
 
 use common::gpu::TestResult;
+use common::shade_steps::shade_steps;
 use craterfield::field2d::{Event, Graph, Level, Terrain};
 use craterfield::gpu::READBACK_FORMAT;
 use craterfield::gpu::{GpuContext, GpuError, Offscreen, Timestamps};
@@ -274,65 +275,6 @@ fn refine_on_cratered_ground_is_the_direct_render(ctx: &GpuContext) -> TestResul
     Ok(())
 }
 
-/// How far the interior shade of a picture is from the exact render's, over the pixels
-/// the exact field puts deeper than the outline (there only the depth shade may differ);
-/// the same measure as `tests/render_refine.rs` takes of the twin.
-#[derive(Debug, Default)]
-struct ShadeSteps {
-    /// Pixels deeper than the outline.
-    solid: usize,
-    /// Of those, pixels more than 8 levels from the exact colour.
-    off: usize,
-    /// Neighbouring pixel pairs of them whose error (picture minus exact) changes by more
-    /// than 8 levels from one to the other, across the edge of a `4 x 4` block aligned
-    /// with the image and inside one.
-    edge_steps: usize,
-    inner_steps: usize,
-    /// All neighbouring pairs across block edges and inside blocks.
-    edge_pairs: usize,
-    inner_pairs: usize,
-}
-
-/// The errors of `image` against `exact` where `depth_px` (the exact distance, pixels) is
-/// below `deep_px` (see [`ShadeSteps`]).
-fn shade_steps(image: &RgbaImage, exact: &RgbaImage, depth_px: &[f32], deep_px: f32) -> ShadeSteps {
-    let (w, h) = (image.width() as usize, image.height() as usize);
-    let err = |x: usize, y: usize| {
-        let (a, b) = (
-            image.get_pixel(x as u32, y as u32),
-            exact.get_pixel(x as u32, y as u32),
-        );
-        [0, 1, 2].map(|c| i32::from(a[c]) - i32::from(b[c]))
-    };
-    let solid = |x: usize, y: usize| depth_px[y * w + x] < deep_px;
-    let mut s = ShadeSteps::default();
-    for y in 0..h {
-        for x in 0..w {
-            if !solid(x, y) {
-                continue;
-            }
-            let e = err(x, y);
-            s.solid += 1;
-            s.off += usize::from(e.iter().any(|v| v.abs() > 8));
-            for (nx, ny, edge) in [(x + 1, y, (x + 1) % 4 == 0), (x, y + 1, (y + 1) % 4 == 0)] {
-                if nx >= w || ny >= h || !solid(nx, ny) {
-                    continue;
-                }
-                let f = err(nx, ny);
-                let step = (0..3).any(|c| (e[c] - f[c]).abs() > 8);
-                if edge {
-                    s.edge_pairs += 1;
-                    s.edge_steps += usize::from(step);
-                } else {
-                    s.inner_pairs += 1;
-                    s.inner_steps += usize::from(step);
-                }
-            }
-        }
-    }
-    s
-}
-
 /// The interior shade of the GPU's proven solid blocks has no block steps when zoomed
 /// out, where the clamp contour of the terrain's distance and the creases under peaks cut
 /// the lit rim with hard edges: few pixels off the exact render by more than 8 levels, and
@@ -365,11 +307,7 @@ fn refine_shade_has_no_block_steps(ctx: &GpuContext) -> TestResult {
             100.0 * stats.refined_block_fraction(),
             stats.exact_evaluations
         );
-        // Block steps: the error jumps across block edges more than twice as often as
-        // inside blocks (ten jumps of slack).
-        let inner_rate = s.inner_steps as f64 / s.inner_pairs.max(1) as f64;
-        let stepped = s.edge_steps as f64 > 2.0 * inner_rate * s.edge_pairs as f64 + 10.0;
-        if s.off > 10 + s.solid / 10_000 || stepped {
+        if s.stepped() {
             let dir = out_dir();
             let _ = gpu.save(dir.join(format!("steps-{width}.gpu.png")));
             let _ = exact.save(dir.join(format!("steps-{width}.exact.png")));

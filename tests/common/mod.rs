@@ -1,10 +1,13 @@
 //! Helpers shared by the integration tests: the one deterministic pseudo-random generator
-//! (SplitMix64, no dependency), scripted inputs, and the one GPU test harness (`gpu`). Each
-//! test binary uses part of it.
+//! (SplitMix64, no dependency), scripted inputs, the one GPU test harness (`gpu`), and the
+//! measure of block steps in a rendered shade (`shade_steps`). Each test binary uses part of
+//! it.
 #![allow(dead_code)]
 
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
+#[cfg(feature = "raster")]
+pub(crate) mod shade_steps;
 
 use craterfield::field2d::Aabb;
 use craterfield::sim::Input;
