@@ -19,7 +19,7 @@ use craterfield::emit::codegen3d::{
     MARCH3D_BUDGET, inlined_statements, march_inlined_statements, march_wgsl,
 };
 use craterfield::emit::plan3d::Plan;
-use craterfield::gpu::{GpuContext, Timestamps};
+use craterfield::gpu::{GpuContext, GpuError, Timestamps};
 use craterfield::march3d::compile::{CompileOptions, Optimization, emit};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::gpu::{MarchGpuError, Marcher, march_wgsl_within};
@@ -323,7 +323,7 @@ fn a_plan_past_the_shader_budget_is_refused(ctx: &GpuContext) -> TestResult {
 }
 
 /// A render the GPU has not finished within the marcher's wait limit is a
-/// [`MarchGpuError::Timeout`], not a wait without end, and the marcher renders again
+/// [`GpuError::Timeout`], not a wait without end, and the marcher renders again
 /// afterwards. With a zero limit the check comes microseconds after the submission, long
 /// before any GPU finishes a million-pixel Mandelbulb (lavapipe takes seconds, a fast GPU
 /// milliseconds). wgpu's GL backend may run the pass before `submit` returns (it does on
@@ -346,10 +346,10 @@ fn a_render_past_the_wait_limit_is_a_timeout(ctx: &GpuContext) -> TestResult {
     assert!(
         matches!(
             late,
-            Err(MarchGpuError::Timeout {
+            Err(MarchGpuError::Gpu(GpuError::Timeout {
                 what: "march pass",
                 limit: Duration::ZERO
-            })
+            }))
         ),
         "{:?}",
         late.map(|pixels| pixels.len())
@@ -543,10 +543,13 @@ fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
         texture.size(),
     );
     let index = ctx.queue.submit([encoder.finish()]);
-    let got: Vec<u8> = common::gpu::read_buffer(&ctx.device, &buffer, index)?
-        .chunks(row as usize)
-        .flat_map(|line| line[..(w * 4) as usize].to_vec())
-        .collect();
+    craterfield::gpu::wait_for(&ctx.device, Some(index), GPU_WAIT, "caller's readback")?;
+    let got: Vec<u8> = craterfield::gpu::map_read(&ctx.device, &buffer, |bytes| {
+        bytes
+            .chunks(row as usize)
+            .flat_map(|line| line[..(w * 4) as usize].to_vec())
+            .collect()
+    })?;
     assert_eq!(got, expected, "encode_timed() and render_to_rgba() differ");
     if let Some(s) = &stamps {
         let ms = s.read_ms(&ctx.device)?;

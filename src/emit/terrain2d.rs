@@ -32,6 +32,33 @@ pub struct ShaderBudget {
     pub max_inlined_statements: u64,
 }
 
+impl ShaderBudget {
+    /// [`EmitError::TooLarge`] when a module of `inlined` statements (once every call is
+    /// inlined) is past the budget: checked before the text is written.
+    pub fn check_inlined(&self, inlined: u64) -> Result<(), EmitError> {
+        if inlined > self.max_inlined_statements {
+            return Err(EmitError::TooLarge {
+                what: "inlined statements",
+                size: inlined,
+                limit: self.max_inlined_statements,
+            });
+        }
+        Ok(())
+    }
+
+    /// [`EmitError::TooLarge`] when a module's `text` is past the budget.
+    pub fn check_text(&self, text: &str) -> Result<(), EmitError> {
+        if text.len() > self.max_bytes {
+            return Err(EmitError::TooLarge {
+                what: "text bytes",
+                size: text.len() as u64,
+                limit: self.max_bytes as u64,
+            });
+        }
+        Ok(())
+    }
+}
+
 impl Default for ShaderBudget {
     /// 1 MiB of text and 20,000 inlined statements: the shipped levels need at most 43
     /// statements and 21 KB, the prospero expression (about 6,600 operations) 6,603 and
@@ -118,22 +145,9 @@ impl TerrainEmitter {
     /// a driver goes through this). The inlined size is checked before any text is
     /// written.
     pub fn emit_within(&self, plan: &CullPlan, budget: &ShaderBudget) -> Result<String, EmitError> {
-        let inlined = self.inlined_statements(plan);
-        if inlined > budget.max_inlined_statements {
-            return Err(EmitError::TooLarge {
-                what: "inlined statements",
-                size: inlined,
-                limit: budget.max_inlined_statements,
-            });
-        }
+        budget.check_inlined(self.inlined_statements(plan))?;
         let text = self.emit(plan);
-        if text.len() > budget.max_bytes {
-            return Err(EmitError::TooLarge {
-                what: "text bytes",
-                size: text.len() as u64,
-                limit: budget.max_bytes as u64,
-            });
-        }
+        budget.check_text(&text)?;
         Ok(text)
     }
 

@@ -52,4 +52,13 @@ pub enum GpuError {
     /// Reading back pixels failed.
     #[error("reading the frame back failed: {0}")]
     Readback(String),
+    /// The GPU did not finish submitted work within the wait's limit ([`super::wait_for`]);
+    /// the work may still be running.
+    #[error("the GPU did not finish the {what} within {limit:?}")]
+    Timeout {
+        /// What was waited for.
+        what: &'static str,
+        /// The limit.
+        limit: std::time::Duration,
+    },
 }

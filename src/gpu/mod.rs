@@ -1,7 +1,7 @@
 //! GPU plumbing shared by the 2D terrain renderer and the 3D raymarcher: a headless device
 //! for tools and tests ([`GpuContext`]), offscreen targets and readback ([`Offscreen`]),
-//! timestamp queries ([`Timestamps`]), the bounded pipeline cache ([`PipelineCache`]) and the
-//! one error type ([`GpuError`]).
+//! timestamp queries ([`Timestamps`]), bounded waits ([`wait_for`]), the bounded pipeline cache
+//! ([`PipelineCache`]) and the one error type ([`GpuError`]).
 //!
 //! Nothing here knows about terrain or scenes: `render2d::gpu` and `march3d::gpu` build on it,
 //! and it depends on no other module of the crate.
@@ -12,11 +12,12 @@ mod error;
 mod limits;
 mod offscreen;
 mod timing;
+mod wait;
 
 pub use cache::PipelineCache;
 pub use context::{GpuContext, device_limits};
 pub use error::GpuError;
 pub(crate) use limits::{check_buffer, check_storage, check_texture};
-pub(crate) use offscreen::map_read;
-pub use offscreen::{Offscreen, READBACK_FORMAT};
+pub use offscreen::{Offscreen, READBACK_FORMAT, map_read};
 pub use timing::Timestamps;
+pub use wait::{DEFAULT_WAIT, wait_for};

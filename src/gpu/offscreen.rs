@@ -4,6 +4,7 @@
 use image::RgbaImage;
 
 use super::GpuError;
+use super::wait::{DEFAULT_WAIT, wait_for};
 
 /// Format of readback targets (bytes map one to one onto image pixels).
 pub const READBACK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -119,9 +120,9 @@ impl Offscreen {
     }
 }
 
-/// Maps `buffer` for reading (after the commands filling it were submitted), waits for the
-/// device, hands the bytes to `read` and unmaps.
-pub(crate) fn map_read<T>(
+/// Maps a `MAP_READ` `buffer` for reading (after the commands filling it were submitted),
+/// waits for the device (at most [`DEFAULT_WAIT`]), hands the bytes to `read` and unmaps.
+pub fn map_read<T>(
     device: &wgpu::Device,
     buffer: &wgpu::Buffer,
     read: impl FnOnce(&[u8]) -> T,
@@ -131,10 +132,10 @@ pub(crate) fn map_read<T>(
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
-    rx.recv()
+    wait_for(device, None, DEFAULT_WAIT, "readback")?;
+    // The wait has run the mapping callback: `try_recv`, so a missing callback is an error
+    // rather than a block.
+    rx.try_recv()
         .map_err(|e| GpuError::Readback(e.to_string()))?
         .map_err(|e| GpuError::Readback(e.to_string()))?;
     let out = {

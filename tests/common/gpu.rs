@@ -6,9 +6,9 @@
 //! No test can hang silently. The tests run on one thread, so libtest prints
 //! `test NAME ...` before each one starts. A watchdog aborts the binary when a test runs past
 //! its deadline ([`GPU_TEST_TIMEOUT_VAR`], default [`DEFAULT_TEST_TIMEOUT`]), naming the test
-//! and its last [`phase`]. The readback helpers here wait for the GPU for at most
-//! [`GPU_WAIT`]. A driver stuck in a synchronous call, such as compiling a shader, is caught
-//! only by the watchdog.
+//! and its last [`phase`]. The tests' own waits for the GPU last at most [`GPU_WAIT`]. A
+//! driver stuck in a synchronous call, such as compiling a shader, is caught only by the
+//! watchdog.
 
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::sync::{Mutex, OnceLock};
@@ -34,9 +34,9 @@ pub(crate) const GPU_TEST_TIMEOUT_VAR: &str = "CRATERFIELD_GPU_TEST_TIMEOUT_S";
 /// binary, so the watchdog names the stuck test before the script kills the binary.
 pub(crate) const DEFAULT_TEST_TIMEOUT: Duration = Duration::from_secs(240);
 
-/// The longest the readback helpers wait for submitted GPU work. It is shorter than a test's
-/// deadline, so a GPU that never finishes fails that test with an error and the rest still
-/// run.
+/// The longest the tests wait for submitted GPU work (`craterfield::gpu::wait_for`). It is
+/// shorter than a test's deadline, so a GPU that never finishes fails that test with an
+/// error and the rest still run.
 pub(crate) const GPU_WAIT: Duration = Duration::from_secs(120);
 
 /// What the running test is doing now; the watchdog prints it.
@@ -108,77 +108,6 @@ fn context() -> Option<&'static Mutex<GpuContext>> {
             }
         })
         .as_ref()
-}
-
-/// Why a helper's wait for the GPU failed.
-#[derive(Debug)]
-pub(crate) enum WaitError {
-    /// The submission had not finished after this long.
-    Timeout(Duration),
-    /// The device was lost, or the wait was refused.
-    Device(String),
-    /// The buffer could not be mapped.
-    Map(String),
-}
-
-impl std::fmt::Display for WaitError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            WaitError::Timeout(limit) => write!(f, "the GPU did not finish within {limit:?}"),
-            WaitError::Device(e) => write!(f, "waiting for the GPU failed: {e}"),
-            WaitError::Map(e) => write!(f, "mapping the readback buffer failed: {e}"),
-        }
-    }
-}
-
-impl std::error::Error for WaitError {}
-
-/// Waits until submission `index` has finished, for at most [`GPU_WAIT`].
-pub(crate) fn wait(device: &wgpu::Device, index: wgpu::SubmissionIndex) -> Result<(), WaitError> {
-    match device.poll(wgpu::PollType::Wait {
-        submission_index: Some(index),
-        timeout: Some(GPU_WAIT),
-    }) {
-        Ok(_) => Ok(()),
-        Err(wgpu::PollError::Timeout) => Err(WaitError::Timeout(GPU_WAIT)),
-        Err(e) => Err(WaitError::Device(e.to_string())),
-    }
-}
-
-/// The bytes of a `MAP_READ` `buffer` filled by submission `index`, mapped after a
-/// bounded [`wait`].
-pub(crate) fn read_buffer(
-    device: &wgpu::Device,
-    buffer: &wgpu::Buffer,
-    index: wgpu::SubmissionIndex,
-) -> Result<Vec<u8>, WaitError> {
-    wait(device, index)?;
-    let slice = buffer.slice(..);
-    let (tx, rx) = channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    // The work is finished, so this poll only runs the mapping callback. It still has a
-    // limit, because it waits on the device too.
-    match device.poll(wgpu::PollType::Wait {
-        submission_index: None,
-        timeout: Some(GPU_WAIT),
-    }) {
-        Ok(_) => {}
-        Err(wgpu::PollError::Timeout) => return Err(WaitError::Timeout(GPU_WAIT)),
-        Err(e) => return Err(WaitError::Device(e.to_string())),
-    }
-    // The callback has run by now: `try_recv`, so a missing callback is an error and does
-    // not block.
-    rx.try_recv()
-        .map_err(|_| WaitError::Map("the mapping callback did not run".into()))?
-        .map_err(|e| WaitError::Map(e.to_string()))?;
-    let bytes = slice
-        .get_mapped_range()
-        .map_err(|e| WaitError::Map(e.to_string()))?
-        .to_vec();
-    buffer.unmap();
-    Ok(bytes)
 }
 
 /// Runs `tests` with libtest's command line (filters, `--list`, `--ignored`) and exits.

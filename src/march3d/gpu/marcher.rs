@@ -3,12 +3,12 @@
 
 use std::time::{Duration, Instant};
 
-use crate::emit::ShaderBudget;
 use crate::emit::codegen3d::{MARCH3D_BUDGET, march_inlined_statements, march_wgsl};
 use crate::emit::plan3d::{Camera3d, Plan};
-use crate::gpu::GpuError;
+use crate::emit::{EmitError, ShaderBudget};
 use crate::gpu::PipelineCache;
 use crate::gpu::Timestamps;
+use crate::gpu::{DEFAULT_WAIT, wait_for};
 use crate::gpu::{Offscreen, READBACK_FORMAT};
 
 use super::MarchGpuError;
@@ -23,12 +23,6 @@ const WORKGROUP: u32 = 8;
 /// The only target format: `rgba8unorm` rounds to nearest when storing, which is the CPU
 /// tracer's `floor(clamp(c, 0, 1) * 255 + 0.5)`.
 pub(super) const TARGET_FORMAT: wgpu::TextureFormat = READBACK_FORMAT;
-
-/// How long [`Marcher::render_timed`] waits for a submission by default: ten minutes. That
-/// is far longer than a frame takes on a working device: Mesa's lavapipe (the GPU running
-/// on the CPU, two cores) renders the forest at 256x144 in about 2 s. Reaching it means a
-/// hung device, or a software driver on an image near the 64 Mi pixel limit.
-pub const DEFAULT_WAIT: Duration = Duration::from_secs(600);
 
 /// The GPU raymarcher on the caller's device. See the [module docs](super).
 pub struct Marcher {
@@ -112,7 +106,7 @@ impl Marcher {
     }
 
     /// How long a render waits for the GPU before giving up with
-    /// [`MarchGpuError::Timeout`] (default [`DEFAULT_WAIT`]).
+    /// [`crate::gpu::GpuError::Timeout`] (default [`DEFAULT_WAIT`]).
     pub fn wait_limit(&self) -> Duration {
         self.wait_limit
     }
@@ -224,13 +218,13 @@ impl Marcher {
             });
         let stamps = self.timestamps.as_ref().and_then(|ts| ts.pair(0));
         self.encode_pass(&mut encoder, plan.key, target.view(), width, height, stamps);
-        // Every submission is waited for with a limit before a read maps its buffer: the
-        // reads wait without one, and by then the GPU has finished and they return at once.
+        // Every submission is waited for with the marcher's limit before a read maps its
+        // buffer; by then the GPU has finished and the read's own wait returns at once.
         if let Some(ts) = &self.timestamps {
             ts.encode_resolve(&mut encoder);
             target.encode_copy(&mut encoder);
             let index = self.queue.submit([encoder.finish()]);
-            wait_for(&self.device, index, self.wait_limit, "march pass")?;
+            wait_for(&self.device, Some(index), self.wait_limit, "march pass")?;
             let pixels = target.read(&self.device)?.into_raw();
             let ms = ts.read_ms(&self.device)?.first().copied().unwrap_or(0.0);
             return Ok((pixels, ms));
@@ -238,7 +232,7 @@ impl Marcher {
         // No timestamp queries: the wall-clock time of the pass alone, then the copy.
         let started = Instant::now();
         let index = self.queue.submit([encoder.finish()]);
-        wait_for(&self.device, index, self.wait_limit, "march pass")?;
+        wait_for(&self.device, Some(index), self.wait_limit, "march pass")?;
         let ms = started.elapsed().as_secs_f64() * 1e3;
         let mut copy = self
             .device
@@ -247,7 +241,7 @@ impl Marcher {
             });
         target.encode_copy(&mut copy);
         let index = self.queue.submit([copy.finish()]);
-        wait_for(&self.device, index, self.wait_limit, "readback copy")?;
+        wait_for(&self.device, Some(index), self.wait_limit, "readback copy")?;
         Ok((target.read(&self.device)?.into_raw(), ms))
     }
 
@@ -338,49 +332,22 @@ impl Marcher {
     }
 }
 
-/// Waits until submission `index` has finished, for at most `limit`.
-fn wait_for(
-    device: &wgpu::Device,
-    index: wgpu::SubmissionIndex,
-    limit: Duration,
-    what: &'static str,
-) -> Result<(), MarchGpuError> {
-    match device.poll(wgpu::PollType::Wait {
-        submission_index: Some(index),
-        timeout: Some(limit),
-    }) {
-        Ok(_) => Ok(()),
-        Err(wgpu::PollError::Timeout) => Err(MarchGpuError::Timeout { what, limit }),
-        Err(e) => Err(GpuError::DeviceLost(e.to_string()).into()),
-    }
-}
-
 /// `plan`'s emitted module ([`march_wgsl`]), refused with [`MarchGpuError::TooLarge`] when it
 /// is past `budget`: what [`Marcher`] hands the driver goes through this. It needs no
 /// device, so a plan can be checked before asking for one.
 pub fn march_wgsl_within(plan: &Plan, budget: &ShaderBudget) -> Result<String, MarchGpuError> {
     let source = march_wgsl(plan)?;
-    let too_large = |what, size: u64, limit: u64| MarchGpuError::TooLarge {
-        key: plan.key,
-        what,
-        size,
-        limit,
-    };
-    let inlined = march_inlined_statements(plan, &source);
-    if inlined > budget.max_inlined_statements {
-        return Err(too_large(
-            "inlined statements",
-            inlined,
-            budget.max_inlined_statements,
-        ));
-    }
-    if source.len() > budget.max_bytes {
-        return Err(too_large(
-            "text bytes",
-            source.len() as u64,
-            budget.max_bytes as u64,
-        ));
-    }
+    budget
+        .check_inlined(march_inlined_statements(plan, &source))
+        .and_then(|()| budget.check_text(&source))
+        .map_err(|e| match e {
+            EmitError::TooLarge { what, size, limit } => MarchGpuError::TooLarge {
+                key: plan.key,
+                what,
+                size,
+                limit,
+            },
+        })?;
     Ok(source)
 }
 

@@ -12,19 +12,17 @@
 //! [`MARCH3D_BUDGET`](crate::emit::codegen3d::MARCH3D_BUDGET)) is refused with
 //! [`MarchGpuError::TooLarge`] before the driver compiles it ([`march_wgsl_within`] checks a
 //! plan without a device). Each wait for submitted work ends after the marcher's wait limit
-//! with [`MarchGpuError::Timeout`].
+//! with [`GpuError::Timeout`].
 
 mod marcher;
 mod uniforms;
-
-use std::time::Duration;
 
 use thiserror::Error;
 
 use crate::emit::plan3d::PlanError;
 use crate::gpu::GpuError;
 
-pub use marcher::{DEFAULT_WAIT, Marcher, march_wgsl_within};
+pub use marcher::{Marcher, march_wgsl_within};
 pub use uniforms::MarchFrame;
 
 /// Why the GPU raymarcher could not render.
@@ -85,15 +83,6 @@ pub enum MarchGpuError {
         size: u64,
         /// The budget.
         limit: u64,
-    },
-    /// The GPU did not finish the submitted work within the marcher's wait limit
-    /// ([`Marcher::set_wait_limit`]); the work may still be running.
-    #[error("the GPU did not finish the {what} within {limit:?}")]
-    Timeout {
-        /// What was waited for.
-        what: &'static str,
-        /// The limit.
-        limit: Duration,
     },
     /// Reading back pixels or timestamps failed, or the device was lost.
     #[error(transparent)]

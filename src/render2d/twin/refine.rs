@@ -39,7 +39,7 @@ use image::RgbaImage;
 use serde::Serialize;
 
 use super::blocks::{Block, Kernel, Layout, Run, Scratch, pixel_weights, split_row_groups};
-use super::shade::Shader;
+use super::shade::{Shader, mix};
 use super::threads::run_units;
 use super::upsample::{Textures, normal};
 use super::{FieldImage, LowRes, TwinError};
@@ -962,11 +962,6 @@ impl<'a, F: Sdf + Sync> Refiner<'a, F> {
             exact_evaluations: texels + margins + refined_pixels + get(&c.corners),
         }
     }
-}
-
-/// `a + (b - a) t`.
-fn mix(a: f32, b: f32, t: f32) -> f32 {
-    a + (b - a) * t
 }
 
 fn queue(scratch: &mut RefineScratch, p: Vec2, x: usize, yi: usize) {

@@ -157,7 +157,7 @@ pub(crate) fn unit_or(v: Vec2, fallback: Vec2) -> Vec2 {
 }
 
 /// `a + (b - a) t`.
-fn mix(a: f32, b: f32, t: f32) -> f32 {
+pub(super) fn mix(a: f32, b: f32, t: f32) -> f32 {
     a + (b - a) * t
 }
 
