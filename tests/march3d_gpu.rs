@@ -79,7 +79,7 @@ const REFUSED: &[&str] = &["forest-naive"];
 /// neither `sin`'s error (only 2^-11 absolute, and only on [-pi, pi]) nor how `dot` is
 /// fused. The factor 43758 then turns any difference in the last bits into a different noise
 /// value, so the terrain and rocks change shape. That is a different scene, not rounding
-/// noise: on NVIDIA, sparse naive differed in 2.5% of its pixels, all in the terrain. No
+/// noise: on NVIDIA, sparse naive differed in 2.5% of its pixels. No
 /// pixel tolerance separates a wrong sin hash from a right one on such a driver. So the naive
 /// plans are compared with the portable hash, and every other naive choice is still covered.
 /// On a software adapter such as lavapipe, whose `sin` agreed with the CPU tracer's on these
