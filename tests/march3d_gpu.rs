@@ -18,7 +18,7 @@ use craterfield::emit::ShaderBudget;
 use craterfield::emit::codegen3d::{
     MARCH3D_BUDGET, inlined_statements, march_inlined_statements, march_wgsl,
 };
-use craterfield::emit::plan3d::Plan;
+use craterfield::emit::plan3d::{Hash, Plan};
 use craterfield::gpu::{GpuContext, GpuError, Timestamps};
 use craterfield::march3d::compile::{CompileOptions, Optimization, emit};
 use craterfield::march3d::cpu::{self, TraceOptions};
@@ -119,11 +119,12 @@ fn comparison_plans() -> Vec<(String, Plan, craterfield::march3d::Camera3d)> {
             out.push((format!("{name}{suffix}"), plan, camera));
         }
     }
-    out.extend(
-        all_plans()
-            .into_iter()
-            .map(|(name, plan, camera)| (format!("hand-{name}"), plan, camera)),
-    );
+    out.extend(all_plans().into_iter().map(|(name, mut plan, camera)| {
+        // A hand-built plan on the sin hash (world-naive) is compared with the portable one
+        // here, and with its own hash in `sin_hash_plans`, for the reason of `naive_portable`.
+        plan.hash = Hash::DotFract;
+        (format!("hand-{name}"), plan, camera)
+    }));
     out
 }
 
@@ -147,7 +148,14 @@ fn gpu_matches_the_cpu_tracer(ctx: &GpuContext) -> TestResult {
 /// The plans of the worlds whose naive preset uses the sin hash, where it fits the budget.
 fn sin_hash_plans() -> Vec<(String, Plan, craterfield::march3d::Camera3d)> {
     let (plan, camera) = builtin_plan("sparse", CompileOptions::naive());
-    vec![("sparse-naive-sin".to_string(), plan, camera)]
+    let mut plans = vec![("sparse-naive-sin".to_string(), plan, camera)];
+    plans.extend(
+        all_plans()
+            .into_iter()
+            .filter(|(_, plan, _)| plan.hash == Hash::Sin)
+            .map(|(name, plan, camera)| (format!("hand-{name}-sin"), plan, camera)),
+    );
+    plans
 }
 
 /// The sin hash (see [`naive_portable`]) compared with the CPU at the same tolerance as
