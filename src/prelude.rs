@@ -21,23 +21,23 @@
 
 pub use glam::Vec2;
 
-pub use crate::field2d::query::{
+pub use craterfield_field::query::{
     CapsuleOptions, ClosestOptions, Contact, QueryError, RayHit, RayOptions, SurfacePoint,
     SweepHit, closest_point, contact_capsule, contact_circle, raycast, sweep_circle,
 };
-pub use crate::field2d::{
+pub use craterfield_field::{
     Aabb, Event, EventError, EventKind, Level, LevelError, MaterialId, Sample, Sdf, Terrain,
     TerrainError, TerrainOptions,
 };
-pub use crate::net::{
+pub use craterfield_net::{
     DecodeError, Recorder, Replay, TerrainSnapshot, decode_events, encode_events,
 };
-pub use crate::sim::{Input, Settings, SimError, Snapshot, World, WorldState, buttons};
+pub use craterfield_sim::{Input, Settings, SimError, Snapshot, World, WorldState, buttons};
 
 #[cfg(feature = "raster")]
-pub use crate::render2d::{Camera, Reconstruction, RenderOptions, render_exact, render_twin};
+pub use craterfield_render2d::{Camera, Reconstruction, RenderOptions, render_exact, render_twin};
 
 #[cfg(feature = "gpu")]
-pub use crate::gpu::{GpuContext, GpuError};
+pub use craterfield_gpu::{GpuContext, GpuError};
 #[cfg(feature = "gpu")]
-pub use crate::render2d::gpu::TerrainRenderer;
+pub use craterfield_render2d::gpu::TerrainRenderer;

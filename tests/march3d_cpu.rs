@@ -2,11 +2,11 @@
 //! counts and tile sizes, and its counting mode, over-relaxation and input errors.
 
 use craterfield::backend::Backend;
-use craterfield::emit::plan3d::{
+use craterfield::march3d::cpu::{self, Rendered, TraceError, TraceOptions};
+use craterfield::march3d::plan3d::{
     AoMode, Camera3d, Fbm, Guard, Hash, Lift, March, Material, Node, PaperShading, Plan,
     PointLight, Prim, PrimKind, Shading, ShadowMode, Shape, Sphere, TerrainPlan, WorldShading,
 };
-use craterfield::march3d::cpu::{self, Rendered, TraceError, TraceOptions};
 use craterfield::march3d::scene::rotation_degrees;
 use craterfield::march3d::simd;
 use glam::Vec3;

@@ -15,14 +15,14 @@ use std::time::Duration;
 
 use common::gpu::{GPU_WAIT, TestResult, phase};
 use craterfield::emit::ShaderBudget;
-use craterfield::emit::codegen3d::{
+use craterfield::gpu::{GpuContext, GpuError, Timestamps};
+use craterfield::march3d::codegen3d::{
     MARCH3D_BUDGET, inlined_statements, march_inlined_statements, march_wgsl,
 };
-use craterfield::emit::plan3d::{Hash, Plan};
-use craterfield::gpu::{GpuContext, GpuError, Timestamps};
 use craterfield::march3d::compile::{CompileOptions, Optimization, emit};
 use craterfield::march3d::cpu::{self, TraceOptions};
 use craterfield::march3d::gpu::{MarchGpuError, Marcher, march_wgsl_within};
+use craterfield::march3d::plan3d::{Hash, Plan};
 use craterfield::march3d::scene::{BUILTIN, Lighting, Scene};
 use craterfield::visdiff::{DiffOptions, compare};
 use image::RgbaImage;

@@ -5,10 +5,10 @@ mod march3d_plans;
 
 use std::path::{Path, PathBuf};
 
-use craterfield::emit::codegen3d::{MARCH3D_WGSL, march_wgsl};
-use craterfield::emit::plan3d::{Lift, PlanError, Shape};
 use craterfield::march3d::Plan;
+use craterfield::march3d::codegen3d::{MARCH3D_WGSL, march_wgsl};
 use craterfield::march3d::compile::{CompileOptions, Optimization, emit};
+use craterfield::march3d::plan3d::{Lift, PlanError, Shape};
 use craterfield::march3d::scene::{BUILTIN, Lighting, Scene};
 use march3d_plans::{WorldSwitches, all_plans, scene0, world};
 use naga::valid::{Capabilities, ValidationFlags, Validator};
@@ -74,7 +74,8 @@ fn every_variant_of_each_node_kind_validates() {
         match &mut node.shape {
             Shape::Blend { k, .. } => *k = 1e-6,
             Shape::Rows { part, .. } => {
-                if let craterfield::emit::plan3d::PrimKind::Capsule { a, b, .. } = &mut part.kind {
+                if let craterfield::march3d::plan3d::PrimKind::Capsule { a, b, .. } = &mut part.kind
+                {
                     *b = *a;
                 }
             }

@@ -1,5 +1,7 @@
-//! The library's dependency graph, read from its source: arrows between top-level modules
-//! point one way (no cycle), and no two files of `field2d` need each other.
+//! What Cargo cannot see of the workspace's structure, read from the sources: no two files of
+//! a crate need each other (Cargo already refuses a cycle between crates), the crate graph
+//! of the manifests is the one `docs/ARCHITECTURE.md` draws, and every folder is in the
+//! README's layout table.
 //!
 //! A file depends on another when it names an item of it: a `use` of a `crate::`, `super::`,
 //! `self::` or child-module path, or such a path in an expression. Paths are followed through
@@ -7,7 +9,7 @@
 //! module's facade, not a use, so a facade does not depend on the children it re-exports.
 //! Comments and string literals are skipped.
 //!
-//! `cargo test --test module_graph -- --nocapture` prints the top-level graph.
+//! `cargo test --test module_graph -- --nocapture` prints the crate graph.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -15,9 +17,46 @@ use std::path::{Path, PathBuf};
 
 type ModPath = Vec<String>;
 
-/// Where the library's sources are.
-fn src_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+/// The repository root (the facade crate's folder).
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Every library crate of the workspace: its package name and its folder (the facade's is
+/// the root), in name order.
+fn crates() -> Vec<(String, PathBuf)> {
+    let mut out = vec![("craterfield".to_owned(), root().to_path_buf())];
+    for entry in fs::read_dir(root().join("crates")).expect("a crates folder") {
+        let dir = entry.expect("a folder entry").path();
+        let manifest = fs::read_to_string(dir.join("Cargo.toml")).expect("a crate manifest");
+        out.push((package_name(&manifest), dir));
+    }
+    out.sort();
+    out
+}
+
+/// The `name` of a manifest's `[package]`.
+fn package_name(manifest: &str) -> String {
+    manifest
+        .lines()
+        .find_map(|l| l.strip_prefix("name = \""))
+        .and_then(|rest| rest.strip_suffix('"'))
+        .expect("a package name")
+        .to_owned()
+}
+
+/// The workspace crates a manifest depends on (`[dependencies]` only: tests may use more).
+fn workspace_dependencies(manifest: &str) -> BTreeSet<String> {
+    let mut section = "";
+    let mut out = BTreeSet::new();
+    for line in manifest.lines() {
+        if line.starts_with('[') {
+            section = line;
+        } else if section == "[dependencies]" && line.starts_with("craterfield-") {
+            out.insert(line.split([' ', '=']).next().unwrap_or_default().to_owned());
+        }
+    }
+    out
 }
 
 /// The module path of a source file (`src/a/b.rs` and `src/a/b/mod.rs` are `a::b`).
@@ -364,10 +403,9 @@ fn is_pub_before(toks: &[Tok], i: usize) -> bool {
     (i >= 1 && is(i - 1, "pub")) || (i >= 4 && is(i - 4, "pub") && toks[i - 1] == Tok::Other)
 }
 
-fn read_crate() -> Crate {
-    let src = src_dir();
+fn read_crate(src: &Path) -> Crate {
     let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    rust_files(src, &mut files);
     files.sort();
     let mut krate = Crate {
         modules: BTreeSet::new(),
@@ -377,7 +415,7 @@ fn read_crate() -> Crate {
     };
     let mut scans = Vec::new();
     for file in &files {
-        let rel = file.strip_prefix(&src).expect("under src");
+        let rel = file.strip_prefix(src).expect("under src");
         let name = rel.to_string_lossy().into_owned();
         let module = module_of(rel);
         krate.modules.insert(module.clone());
@@ -451,15 +489,6 @@ impl Crate {
             }
         }
         edges
-    }
-}
-
-/// The top-level module of a file (`lib.rs` is the crate root, `""`).
-fn top_of(file: &str) -> String {
-    match file.split_once('/') {
-        Some((top, _)) => top.to_owned(),
-        None if file == "lib.rs" => String::new(),
-        None => file.trim_end_matches(".rs").to_owned(),
     }
 }
 
@@ -538,80 +567,6 @@ fn explain(comp: &[String], edges: &BTreeMap<String, BTreeSet<String>>) -> Strin
     lines.join("\n")
 }
 
-fn top_level_graph(
-    files: &BTreeMap<String, BTreeSet<String>>,
-) -> BTreeMap<String, BTreeSet<String>> {
-    let mut top: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for (a, outs) in files {
-        let ta = top_of(a);
-        if ta.is_empty() {
-            continue;
-        }
-        let entry = top.entry(ta.clone()).or_default();
-        for b in outs {
-            let tb = top_of(b);
-            if !tb.is_empty() && tb != ta {
-                entry.insert(tb);
-            }
-        }
-    }
-    top
-}
-
-#[test]
-fn top_level_modules_form_no_cycle() {
-    let files = read_crate().file_edges();
-    let top = top_level_graph(&files);
-    for (m, outs) in &top {
-        let outs: Vec<&str> = outs.iter().map(String::as_str).collect();
-        println!("{m:>10} -> {}", outs.join(", "));
-    }
-    let found = cycles(&top);
-    let report: Vec<String> = found
-        .iter()
-        .map(|c| {
-            let file_edges: Vec<String> = files
-                .iter()
-                .flat_map(|(a, outs)| outs.iter().map(move |b| (a, b)))
-                .filter(|(a, b)| {
-                    let (ta, tb) = (top_of(a), top_of(b));
-                    ta != tb && c.contains(&ta) && c.contains(&tb)
-                })
-                .map(|(a, b)| format!("    {a} -> {b}"))
-                .collect();
-            format!("{}:\n{}", c.join(" <-> "), file_edges.join("\n"))
-        })
-        .collect();
-    assert!(
-        found.is_empty(),
-        "top-level modules depend on each other in a cycle:\n{}",
-        report.join("\n")
-    );
-}
-
-#[test]
-fn field2d_files_form_no_cycle() {
-    let files = read_crate().file_edges();
-    let inner: BTreeMap<String, BTreeSet<String>> = files
-        .iter()
-        .filter(|(f, _)| f.starts_with("field2d/"))
-        .map(|(f, outs)| {
-            let outs = outs.iter().filter(|o| o.starts_with("field2d/")).cloned();
-            (f.clone(), outs.collect())
-        })
-        .collect();
-    let found = cycles(&inner);
-    let report: Vec<String> = found
-        .iter()
-        .map(|c| format!("{}:\n{}", c.join(", "), explain(c, &inner)))
-        .collect();
-    assert!(
-        found.is_empty(),
-        "files of field2d need each other:\n{}",
-        report.join("\n")
-    );
-}
-
 /// The reader itself: a re-exported item resolves to the file that defines it, comments and
 /// strings are not read, and a test module's `super` is its file.
 #[test]
@@ -631,83 +586,131 @@ fn the_reader_follows_reexports_and_skips_prose() {
     );
     assert_eq!(s.uses[0].0, vec!["m".to_owned(), "tests".to_owned()]);
     assert_eq!(s.bare_paths[0].1.join("::"), "crate::x::y");
-    let krate = read_crate();
+    let krate = read_crate(&root().join("crates/render2d/src"));
     // `emit::TerrainEmitter` is defined in emit/terrain2d.rs and re-exported by emit/mod.rs.
     let target = krate.resolve(&["emit".to_owned(), "TerrainEmitter".to_owned()], 0);
     assert_eq!(target, "emit/terrain2d.rs");
 }
 
-/// Stricter than the issue asks of `field2d`: no two files anywhere in the crate need each
-/// other, so every folder reads bottom-up.
+/// No two files of a crate need each other, so every folder reads bottom-up.
 #[test]
-fn crate_files_form_no_cycle() {
-    let files = read_crate().file_edges();
-    let found = cycles(&files);
-    let report: Vec<String> = found
-        .iter()
-        .map(|c| format!("{}:\n{}", c.join(", "), explain(c, &files)))
-        .collect();
+fn files_of_every_crate_form_no_cycle() {
+    let mut report = Vec::new();
+    for (name, dir) in crates() {
+        let files = read_crate(&dir.join("src")).file_edges();
+        for c in cycles(&files) {
+            report.push(format!(
+                "{name}: {}:\n{}",
+                c.join(", "),
+                explain(&c, &files)
+            ));
+        }
+    }
     assert!(
-        found.is_empty(),
+        report.is_empty(),
         "files need each other:\n{}",
         report.join("\n")
     );
 }
 
-/// Every folder of `src/` is in the README's layout table, either on its own row or named in
-/// its parent's row, and every top-level module is in the architecture document's map.
+/// The crate table of `docs/ARCHITECTURE.md` has a row per crate whose last column names
+/// exactly the workspace crates its manifest depends on.
 #[test]
-fn the_layout_table_and_the_module_map_match_the_tree() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = fs::read_to_string(root.join("README.md")).expect("README.md");
+fn the_crate_graph_is_the_documented_one() {
     let architecture =
-        fs::read_to_string(root.join("docs/ARCHITECTURE.md")).expect("docs/ARCHITECTURE.md");
+        fs::read_to_string(root().join("docs/ARCHITECTURE.md")).expect("docs/ARCHITECTURE.md");
+    let mut wrong = Vec::new();
+    for (name, dir) in crates() {
+        let manifest = fs::read_to_string(dir.join("Cargo.toml")).expect("a manifest");
+        let deps = workspace_dependencies(&manifest);
+        println!(
+            "{name:>22} -> {}",
+            deps.iter().cloned().collect::<Vec<_>>().join(", ")
+        );
+        let start = format!("| `{name}` |");
+        let Some(row) = architecture.lines().find(|l| l.starts_with(&start)) else {
+            wrong.push(format!("{name}: no row in the crate table"));
+            continue;
+        };
+        let uses = row
+            .trim_end_matches('|')
+            .rsplit('|')
+            .next()
+            .unwrap_or_default();
+        let documented: BTreeSet<String> = uses
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|n| n.starts_with("craterfield"))
+            .map(str::to_owned)
+            .collect();
+        if documented != deps {
+            wrong.push(format!(
+                "{name}: documented {documented:?}, manifest {deps:?}"
+            ));
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "the crate table is wrong:\n{}",
+        wrong.join("\n")
+    );
+}
+
+/// Every crate folder and every folder of a crate's `src/` is in the README's layout table,
+/// either on its own row or named in its parent's row.
+#[test]
+fn the_layout_table_matches_the_tree() {
+    let readme = fs::read_to_string(root().join("README.md")).expect("README.md");
     let row = |path: &str| {
-        let start = format!("| `src/{path}` |");
+        let start = format!("| `{path}` |");
         readme
             .lines()
             .find(|l| l.starts_with(&start))
             .map(str::to_owned)
     };
     let mut missing = Vec::new();
-    let mut files = Vec::new();
-    rust_files(&src_dir(), &mut files);
-    let mut folders = BTreeSet::new();
-    for f in &files {
-        let rel = f.strip_prefix(src_dir()).expect("under src");
-        let mut dir = rel.parent();
-        while let Some(d) = dir.filter(|d| !d.as_os_str().is_empty()) {
-            folders.insert(d.to_string_lossy().into_owned());
-            dir = d.parent();
-        }
-        if rel.parent().is_some_and(|p| p.as_os_str().is_empty())
-            && !matches!(rel.to_str(), Some("lib.rs"))
-        {
-            let name = rel.to_string_lossy().into_owned();
-            let module = name.trim_end_matches(".rs").to_owned();
-            if row(&name).is_none() && row(&format!("{module}/")).is_none() {
-                missing.push(format!("README: src/{name}"));
-            }
-        }
-    }
-    for dir in &folders {
-        let own = row(&format!("{dir}/")).is_some();
-        let in_parent = match dir.rsplit_once('/') {
-            Some((parent, name)) => {
-                row(&format!("{parent}/")).is_some_and(|r| r.contains(&format!("`{name}/`")))
-            }
-            None => false,
+    for (_, dir) in crates() {
+        let rel = dir.strip_prefix(root()).expect("under the root");
+        let base = if rel.as_os_str().is_empty() {
+            "src".to_owned()
+        } else {
+            format!("{}", rel.display())
         };
-        if !own && !in_parent {
-            missing.push(format!("README: src/{dir}/"));
+        if row(&format!("{base}/")).is_none() {
+            missing.push(format!("{base}/"));
         }
-        if !dir.contains('/') && !architecture.contains(&format!("| `{dir}` ")) {
-            missing.push(format!("docs/ARCHITECTURE.md: module {dir}"));
+        let src = dir.join("src");
+        let mut files = Vec::new();
+        rust_files(&src, &mut files);
+        let mut folders = BTreeSet::new();
+        for f in &files {
+            let mut d = f.strip_prefix(&src).expect("under src").parent();
+            while let Some(p) = d.filter(|p| !p.as_os_str().is_empty()) {
+                folders.insert(p.to_string_lossy().into_owned());
+                d = p.parent();
+            }
+        }
+        let prefix = if base == "src" {
+            base.clone()
+        } else {
+            format!("{base}/src")
+        };
+        for folder in &folders {
+            let (parent, name) = match folder.rsplit_once('/') {
+                Some((parent, name)) => (format!("{prefix}/{parent}/"), name),
+                None => (format!("{base}/"), folder.as_str()),
+            };
+            let own = row(&format!("{prefix}/{folder}/")).is_some();
+            let in_parent = row(&parent).is_some_and(|r| r.contains(&format!("`{name}/`")));
+            if !own && !in_parent {
+                missing.push(format!("{prefix}/{folder}/"));
+            }
         }
     }
     assert!(
         missing.is_empty(),
-        "not documented:\n{}",
+        "not in the README's layout table:\n{}",
         missing.join("\n")
     );
 }

@@ -385,7 +385,7 @@ fn print_tables(r: &Report, o: &Options) {
     if r.emitter.iter().any(|e| e.gpu_refused) {
         println!(
             "refused: the config's shader is past the GPU raymarcher's budget of {} inlined statements (docs/limits.md); it has CPU figures only",
-            craterfield::emit::codegen3d::MARCH3D_BUDGET.max_inlined_statements
+            craterfield::march3d::codegen3d::MARCH3D_BUDGET.max_inlined_statements
         );
     }
     if let (Some(all), Some(naive)) = (all, r.emitter.iter().find(|e| e.config == "naive")) {

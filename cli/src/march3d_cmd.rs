@@ -6,9 +6,9 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use craterfield::backend::Backend;
-use craterfield::emit::plan3d::Shading;
 use craterfield::march3d::compile::{CompileOptions, Optimization, WorldCompiler};
 use craterfield::march3d::cpu::{self, TraceOptions};
+use craterfield::march3d::plan3d::Shading;
 use craterfield::march3d::scene::Scene;
 use craterfield::march3d::simd;
 use craterfield::march3d::{Camera3d, Plan};

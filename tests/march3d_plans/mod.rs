@@ -3,11 +3,11 @@
 //! shadow mode of `march3d::plan`.
 #![allow(dead_code)]
 
-use craterfield::emit::plan3d::{
+use craterfield::march3d::Camera3d;
+use craterfield::march3d::plan3d::{
     AoMode, Fbm, Guard, Hash, Lift, March, Material, Node, PaperShading, Plan, PointLight, Prim,
     PrimKind, Shading, ShadowMode, Shape, Sphere, TerrainPlan, WorldShading,
 };
-use craterfield::march3d::Camera3d;
 use craterfield::march3d::scene::rotation_degrees;
 use glam::Vec3;
 

@@ -1,0 +1,766 @@
+//! Batch queries: distances and samples for slices of points (many bodies, render tiles,
+//! mesh extraction), on a SIMD backend, cell-coherent.
+//!
+//! Points are grouped by grid cell (a counting sort, or a comparison sort for batches much
+//! smaller than the grid). Each cell's group then runs in lane blocks: the cell's
+//! specialized base tape (or its constant, baked or carved state), the clamp, and the
+//! cell's events, one event at a time across all lanes. Every step mirrors the single-point
+//! path of [`super::Terrain`], so each result has the same bits as [`Sdf::distance`] and
+//! [`Sdf::sample`] at that point, whatever the backend, batch size or order.
+
+use glam::Vec2;
+
+use super::Terrain;
+use super::cell_tapes::{CellTape, CellTapes};
+use crate::event::EventKind;
+use crate::exec::batch::Block;
+use crate::exec::value::clamp;
+use crate::exec::{Dv, Fv, P2, Val};
+use crate::sample::{MaterialId, Sample};
+use crate::sdf::Sdf;
+use crate::tape::check;
+use crate::tape::{EvalError, MatOut};
+use crate::terrain::grid::{self, CellState, MaterialSource, Rect};
+use craterfield_core::backend::{Backend, BackendError};
+use craterfield_core::simd::{self, Kernel, Lanes};
+
+/// Points of one cell (`None`: outside the grid), as a range of the sorted order.
+struct Group {
+    cell: Option<usize>,
+    start: usize,
+    end: usize,
+}
+
+/// Groups point indices by cell. NaN points are left out (their result is fixed).
+fn group(
+    points: &[Vec2],
+    cell_of: impl Fn(Vec2) -> Option<usize>,
+    cells: usize,
+) -> (Vec<u32>, Vec<Group>) {
+    // Keys: a cell, `cells` for outside the grid, `cells + 1` for NaN.
+    let key = |p: Vec2| -> usize {
+        if p.x.is_nan() || p.y.is_nan() {
+            cells + 1
+        } else {
+            cell_of(p).unwrap_or(cells)
+        }
+    };
+    let group_of = |k: usize, start: usize, end: usize| {
+        (k <= cells).then(|| Group {
+            cell: (k < cells).then_some(k),
+            start,
+            end,
+        })
+    };
+    if cells > points.len().saturating_mul(4) {
+        // Few points on a large grid: a comparison sort, then runs of equal keys.
+        let keys: Vec<u32> = points.iter().map(|&p| key(p) as u32).collect();
+        let mut order: Vec<u32> = (0..points.len() as u32).collect();
+        order.sort_unstable_by_key(|&i| keys[i as usize]);
+        let mut groups = Vec::new();
+        let mut start = 0;
+        while start < order.len() {
+            let k = keys[order[start] as usize];
+            let mut end = start + 1;
+            while end < order.len() && keys[order[end] as usize] == k {
+                end += 1;
+            }
+            groups.extend(group_of(k as usize, start, end));
+            start = end;
+        }
+        return (order, groups);
+    }
+    // A counting sort: keys and their counts in one pass, then placement; each key's
+    // range of the order is known from the counts.
+    let mut counts = vec![0u32; cells + 3];
+    let keys: Vec<u32> = points
+        .iter()
+        .map(|&p| {
+            let k = key(p);
+            counts[k + 1] += 1;
+            k as u32
+        })
+        .collect();
+    for i in 1..counts.len() {
+        counts[i] += counts[i - 1];
+    }
+    let starts = counts.clone();
+    let mut order = vec![0u32; points.len()];
+    for (i, &k) in keys.iter().enumerate() {
+        order[counts[k as usize] as usize] = i as u32;
+        counts[k as usize] += 1;
+    }
+    let groups = (0..cells + 2)
+        .filter(|&k| starts[k + 1] > starts[k])
+        .filter_map(|k| group_of(k, starts[k] as usize, starts[k + 1] as usize))
+        .collect();
+    (order, groups)
+}
+
+/// What a lane block starts from before the cell's events.
+enum Start<'a> {
+    Base(&'a CellTape),
+    Constant(f32, Option<MaterialId>),
+    AirFromBase(&'a CellTape),
+    AirFromBrick(u32),
+    Brick(u32),
+}
+
+impl<F: Sdf> Terrain<F> {
+    /// The backend of the batch queries and of brick baking (by default [`Backend::best`]).
+    pub fn backend(&self) -> Backend {
+        self.backend
+    }
+
+    /// Chooses the backend of the batch queries and of brick baking; results do not depend
+    /// on it (bricks included), only the time they take.
+    pub fn set_backend(&mut self, backend: Backend) -> Result<(), BackendError> {
+        self.backend = backend.check()?;
+        Ok(())
+    }
+
+    /// Whether each grid cell evaluates the base through a tape specialized to the cell
+    /// (on by default). Results do not depend on it; it exists to measure what it saves.
+    pub fn set_specialize(&mut self, on: bool) {
+        if let Some(cell_tapes) = &mut self.cell_tapes {
+            cell_tapes.set_specialize(on);
+        }
+    }
+
+    /// Distances at `points` into `out`, bit-identical to [`Sdf::distance`] at each point.
+    pub fn distances(&self, points: &[Vec2], out: &mut [f32]) -> Result<(), EvalError> {
+        let Some((cell_tapes, order, groups)) = self.batch(points, out, |p| self.distance(p))?
+        else {
+            return Ok(());
+        };
+        let (order, groups) = (&order, &groups);
+        let t = self;
+        simd::run(
+            self.backend,
+            Distances {
+                t,
+                cell_tapes,
+                points,
+                order,
+                groups,
+                out,
+            },
+        )?;
+        Ok(())
+    }
+
+    /// Samples at `points` into `out`, bit-identical to [`Sdf::sample`] at each point.
+    pub fn samples(&self, points: &[Vec2], out: &mut [Sample]) -> Result<(), EvalError> {
+        let Some((cell_tapes, order, groups)) = self.batch(points, out, |p| self.sample(p))? else {
+            return Ok(());
+        };
+        let (order, groups) = (&order, &groups);
+        let t = self;
+        simd::run(
+            self.backend,
+            Samples {
+                t,
+                cell_tapes,
+                points,
+                order,
+                groups,
+                out,
+            },
+        )?;
+        Ok(())
+    }
+
+    /// The values and materials of `cell`'s field from its state and its first `upto`
+    /// events at `points` (a brick's lattice), on the lanes of the terrain's backend:
+    /// bit-identical to the point path (`eval_cell` on values with materials), which it
+    /// replaces where the base has tapes. `false` (nothing written) where it has none.
+    pub(super) fn bake_lattice(
+        &self,
+        cell: usize,
+        upto: usize,
+        points: &[Vec2],
+        values: &mut [f32],
+        materials: &mut [MaterialId],
+    ) -> bool {
+        debug_assert!(values.len() == points.len() && materials.len() == points.len());
+        let Some(cell_tapes) = &self.cell_tapes else {
+            return false;
+        };
+        // A brick state whose brick is missing falls back to the base on the point path;
+        // the lanes would not (it cannot happen: the grid keeps every brick it lists).
+        let brick = match self.grid.cells.get(cell).map(|c| c.state.0) {
+            Some(CellState::Brick(id) | CellState::Air(MaterialSource::Brick(id))) => Some(id),
+            _ => None,
+        };
+        if brick.is_some_and(|id| self.grid.brick(id).is_none()) {
+            return false;
+        }
+        let bake = Bake {
+            t: self,
+            cell_tapes,
+            cell,
+            upto,
+            points,
+            values,
+            materials,
+        };
+        // The backend was checked when it was set, so this does not fail.
+        simd::run(self.backend, bake).is_ok()
+    }
+
+    /// What both batch queries do first: check the lengths, answer every point one at a
+    /// time when the base has no tapes (`None`), else answer the NaN points (whose result
+    /// is fixed) and group the rest by cell.
+    #[allow(clippy::type_complexity)]
+    fn batch<T>(
+        &self,
+        points: &[Vec2],
+        out: &mut [T],
+        single: impl Fn(Vec2) -> T,
+    ) -> Result<Option<(&CellTapes, Vec<u32>, Vec<Group>)>, EvalError> {
+        check(points.len(), out.len())?;
+        let Some(cell_tapes) = &self.cell_tapes else {
+            for (o, &p) in out.iter_mut().zip(points) {
+                *o = single(p);
+            }
+            return Ok(None);
+        };
+        for (o, &p) in out.iter_mut().zip(points) {
+            if p.x.is_nan() || p.y.is_nan() {
+                *o = single(p);
+            }
+        }
+        let (order, groups) = self.group(points);
+        Ok(Some((cell_tapes, order, groups)))
+    }
+
+    fn group(&self, points: &[Vec2]) -> (Vec<u32>, Vec<Group>) {
+        group(points, |p| self.grid.cell_index(p), self.grid.cells.len())
+    }
+
+    /// How a group's lanes start (state and base).
+    fn start<'p>(
+        &'p self,
+        cell_tapes: &'p CellTapes,
+        cell: Option<usize>,
+        material: bool,
+    ) -> Start<'p> {
+        let m = self.options.band;
+        let state = cell
+            .and_then(|c| self.grid.cells.get(c))
+            .map_or(CellState::Base, |c| c.state.0);
+        match state {
+            CellState::Base => Start::Base(cell_tapes.get(&self.grid, cell)),
+            CellState::Solid(mat) => Start::Constant(-m, Some(mat)),
+            CellState::Air(src) if material => match src {
+                MaterialSource::Base => Start::AirFromBase(cell_tapes.get(&self.grid, cell)),
+                MaterialSource::Constant(mat) => Start::Constant(m, Some(mat)),
+                MaterialSource::Brick(id) => Start::AirFromBrick(id),
+            },
+            CellState::Air(_) => Start::Constant(m, None),
+            CellState::Brick(id) => Start::Brick(id),
+        }
+    }
+
+    /// The cell's events in order with their constants at the current tick (events not
+    /// yet started are left out: they change nothing).
+    fn prepared_events(&self, cell: Option<usize>, out: &mut Vec<Prepared>) {
+        self.prepared_prefix(cell, usize::MAX, out);
+    }
+
+    /// [`Terrain::prepared_events`] of the first `upto` listed events only.
+    fn prepared_prefix(&self, cell: Option<usize>, upto: usize, out: &mut Vec<Prepared>) {
+        out.clear();
+        let list = cell.and_then(|c| self.grid.cells.get(c));
+        for e in list.into_iter().flat_map(|c| c.events.iter().take(upto)) {
+            let Some(e) = self.events.get(*e as usize) else {
+                continue;
+            };
+            if let Some(r) = e.radius_at(self.tick) {
+                out.push(Prepared {
+                    kind: e.kind,
+                    center: e.center_f32(),
+                    radius: r,
+                    rim: e.rim_f32(),
+                    material: e.material,
+                });
+            }
+        }
+    }
+}
+
+/// The events of `events` that can change anything at `pts`: the grid's own reach test
+/// (the one that lists an event in a cell, see `Terrain::insert`) applied to the points'
+/// bounding box instead of the whole cell. An event beyond it leaves every lane's bits as
+/// they are (the field is clamped to the band), so leaving it out changes nothing, and
+/// scattered points (bodies, projectiles) skip most of a busy cell's list.
+fn events_reaching(events: &[Prepared], pts: &[Vec2], band: f32, out: &mut Vec<Prepared>) {
+    out.clear();
+    let Some(first) = pts.first() else {
+        return;
+    };
+    let mut rect = Rect {
+        min: [f64::from(first.x), f64::from(first.y)],
+        max: [f64::from(first.x), f64::from(first.y)],
+    };
+    for p in pts {
+        let (x, y) = (f64::from(p.x), f64::from(p.y));
+        rect.min = [rect.min[0].min(x), rect.min[1].min(y)];
+        rect.max = [rect.max[0].max(x), rect.max[1].max(y)];
+    }
+    let band = f64::from(band);
+    out.extend(events.iter().copied().filter(|e| {
+        let center = [f64::from(e.center.x), f64::from(e.center.y)];
+        let (r, k) = (f64::from(e.radius), f64::from(e.rim));
+        let extent = center[0].abs() + center[1].abs() + r + k + band;
+        rect.near_dist(center) <= r + k + band + 2.0 * grid::guard(extent, &rect)
+    }));
+}
+
+/// The events to apply to one block of group `g`: all of the cell's for a group of several
+/// blocks (points spread over the cell, where the test would rarely drop one), else those
+/// reaching the block's points.
+fn reaching_block<'e>(
+    events: &'e [Prepared],
+    pts: &[Vec2],
+    g: &Group,
+    step: usize,
+    band: f32,
+    reaching: &'e mut Vec<Prepared>,
+) -> &'e [Prepared] {
+    if g.end - g.start > step {
+        return events;
+    }
+    events_reaching(events, pts, band, reaching);
+    reaching
+}
+
+/// Gathers the points of one block of a group.
+fn gather(points: &[Vec2], idx: &[u32], buf: &mut Vec<Vec2>) {
+    buf.clear();
+    buf.extend(idx.iter().map(|&i| points[i as usize]));
+}
+
+struct Distances<'a, F: Sdf> {
+    t: &'a Terrain<F>,
+    cell_tapes: &'a CellTapes,
+    points: &'a [Vec2],
+    order: &'a [u32],
+    groups: &'a [Group],
+    out: &'a mut [f32],
+}
+
+impl<F: Sdf> Kernel for Distances<'_, F> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
+        let t = self.t;
+        let band = t.options.band;
+        let mut block: Option<Block<L, Fv<L>, NB>> = None;
+        let mut pts = Vec::new();
+        let mut lanes = [0.0f32; 16];
+        let mut events = Vec::new();
+        let mut reaching = Vec::new();
+        let step = NB * L::WIDTH;
+        for g in self.groups {
+            let start = t.start(self.cell_tapes, g.cell, false);
+            t.prepared_events(g.cell, &mut events);
+            if events.is_empty() {
+                // A constant cell: no point is needed.
+                let constant = match &start {
+                    Start::Base(plan) => plan.clamped,
+                    Start::Constant(v, _) => Some(*v),
+                    Start::AirFromBase(_) | Start::AirFromBrick(_) => Some(band),
+                    Start::Brick(_) => None,
+                };
+                if let Some(c) = constant {
+                    for &i in &self.order[g.start..g.end] {
+                        self.out[i as usize] = c;
+                    }
+                    continue;
+                }
+            }
+            for idx in self.order[g.start..g.end].chunks(step) {
+                gather(self.points, idx, &mut pts);
+                let mut ps = [P2::new(Fv::cst(l, 0.0), Fv::cst(l, 0.0)); NB];
+                for (r, p) in ps.iter_mut().enumerate() {
+                    *p = lane_point(l, &pts, r);
+                }
+                let mut ds = [Fv::cst(l, band); NB];
+                match &start {
+                    Start::Base(plan) if plan.clamped.is_some() => {
+                        ds = [Fv::cst(l, plan.clamped.unwrap_or(band)); NB];
+                    }
+                    Start::Base(plan) => {
+                        let b = block.get_or_insert_with(|| Block::new(l, &plan.value));
+                        b.run(l, &plan.value, &pts);
+                        for (r, d) in ds.iter_mut().enumerate() {
+                            *d = clamp(l, b.get(plan.value.value, r), -band, band);
+                        }
+                    }
+                    Start::Constant(v, _) => ds = [Fv::cst(l, *v); NB],
+                    Start::AirFromBase(_) | Start::AirFromBrick(_) => {}
+                    Start::Brick(id) => {
+                        for (d, p) in ds.iter_mut().zip(&ps) {
+                            *d = brick(l, t, *id, g.cell, *p, false).0;
+                        }
+                    }
+                }
+                let mut mats = [l.splat_i(0); NB];
+                let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
+                for e in events {
+                    for r in 0..NB {
+                        (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
+                    }
+                }
+                for (r, d) in ds.iter().enumerate() {
+                    l.store(d.0, &mut lanes);
+                    for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
+                        self.out[i as usize] = lanes[k - r * L::WIDTH];
+                    }
+                }
+            }
+        }
+    }
+}
+
+struct Samples<'a, F: Sdf> {
+    t: &'a Terrain<F>,
+    cell_tapes: &'a CellTapes,
+    points: &'a [Vec2],
+    order: &'a [u32],
+    groups: &'a [Group],
+    out: &'a mut [Sample],
+}
+
+impl<F: Sdf> Kernel for Samples<'_, F> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
+        let t = self.t;
+        let band = t.options.band;
+        let mut block: Option<Block<L, Dv<L>, NB>> = None;
+        let mut pts = Vec::new();
+        let (mut v, mut gx, mut gy) = ([0.0f32; 16], [0.0f32; 16], [0.0f32; 16]);
+        let mut mat_lanes = [0i32; 16];
+        let mut events = Vec::new();
+        let mut reaching = Vec::new();
+        let step = NB * L::WIDTH;
+        for g in self.groups {
+            let start = t.start(self.cell_tapes, g.cell, true);
+            t.prepared_events(g.cell, &mut events);
+            if let Some(s) = constant_sample(&start, events.is_empty(), band) {
+                for &i in &self.order[g.start..g.end] {
+                    self.out[i as usize] = s;
+                }
+                continue;
+            }
+            for idx in self.order[g.start..g.end].chunks(step) {
+                gather(self.points, idx, &mut pts);
+                let mut ps = [P2::new(Dv::cst(l, 0.0), Dv::cst(l, 0.0)); NB];
+                for (r, p) in ps.iter_mut().enumerate() {
+                    *p = lane_point(l, &pts, r);
+                }
+                let (mut ds, mut mats) =
+                    start_with_materials(l, t, &start, g.cell, &mut block, &pts, &ps);
+                let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
+                for e in events {
+                    for r in 0..NB {
+                        (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
+                    }
+                }
+                for r in 0..NB {
+                    let d = ds[r];
+                    l.store(d.v, &mut v);
+                    l.store(d.dx, &mut gx);
+                    l.store(d.dy, &mut gy);
+                    l.store_i(mats[r], &mut mat_lanes);
+                    for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
+                        let k = k - r * L::WIDTH;
+                        self.out[i as usize] = Sample {
+                            distance: v[k],
+                            gradient: Vec2::new(gx[k], gy[k]),
+                            material: mat_lanes[k] as MaterialId,
+                        };
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The lanes' starting values and materials for the points `pts` (`ps` as lane registers)
+/// of one block of `cell`: the cell's state, before its events. Samples and bakes share it.
+#[inline(always)]
+fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
+    l: L,
+    t: &Terrain<F>,
+    start: &Start<'_>,
+    cell: Option<usize>,
+    block: &mut Option<Block<L, V, NB>>,
+    pts: &[Vec2],
+    ps: &[P2<V>; NB],
+) -> ([V; NB], [L::I; NB]) {
+    let band = t.options.band;
+    let mut ds = [V::cst(l, band); NB];
+    let mut mats = [l.splat_i(0); NB];
+    match start {
+        Start::Base(plan) | Start::AirFromBase(plan) => {
+            let tape = &plan.material;
+            let b = block.get_or_insert_with(|| Block::new(l, tape));
+            b.run(l, tape, pts);
+            let base = matches!(start, Start::Base(_));
+            let mut tape_mats = [0 as MaterialId; 16];
+            for r in 0..NB {
+                b.materials(l, tape, r, &mut tape_mats);
+                mats[r] = l.load_i(&tape_mats.map(i32::from));
+                if base {
+                    ds[r] = match plan.clamped {
+                        Some(c) => V::cst(l, c),
+                        None => clamp(l, b.get(tape.value, r), -band, band),
+                    };
+                }
+            }
+        }
+        Start::Constant(c, m) => {
+            ds = [V::cst(l, *c); NB];
+            mats = [l.splat_i(i32::from(m.unwrap_or(0))); NB];
+        }
+        Start::AirFromBrick(id) | Start::Brick(id) => {
+            let baked = matches!(start, Start::Brick(_));
+            for r in 0..NB {
+                let (d, m) = brick(l, t, *id, cell, ps[r], true);
+                if baked {
+                    ds[r] = d;
+                }
+                mats[r] = m;
+            }
+        }
+    }
+    (ds, mats)
+}
+
+/// A brick's lattice: see [`Terrain::bake_lattice`].
+struct Bake<'a, F: Sdf> {
+    t: &'a Terrain<F>,
+    cell_tapes: &'a CellTapes,
+    cell: usize,
+    upto: usize,
+    points: &'a [Vec2],
+    values: &'a mut [f32],
+    materials: &'a mut [MaterialId],
+}
+
+impl<F: Sdf> Kernel for Bake<'_, F> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
+        let t = self.t;
+        let band = t.options.band;
+        let cell = Some(self.cell);
+        let start = t.start(self.cell_tapes, cell, true);
+        let mut events = Vec::new();
+        t.prepared_prefix(cell, self.upto, &mut events);
+        let mut block: Option<Block<L, Fv<L>, NB>> = None;
+        let (mut v, mut mat_lanes) = ([0.0f32; 16], [0i32; 16]);
+        let step = NB * L::WIDTH;
+        for (chunk, pts) in self.points.chunks(step).enumerate() {
+            let mut ps = [P2::new(Fv::cst(l, 0.0), Fv::cst(l, 0.0)); NB];
+            for (r, p) in ps.iter_mut().enumerate() {
+                *p = lane_point(l, pts, r);
+            }
+            let (mut ds, mut mats) = start_with_materials(l, t, &start, cell, &mut block, pts, &ps);
+            for e in &events {
+                for r in 0..NB {
+                    (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
+                }
+            }
+            for r in 0..NB {
+                l.store(ds[r].0, &mut v);
+                l.store_i(mats[r], &mut mat_lanes);
+                let first = chunk * step + r * L::WIDTH;
+                for k in 0..L::WIDTH {
+                    if let (Some(value), Some(material)) = (
+                        self.values.get_mut(first + k),
+                        self.materials.get_mut(first + k),
+                    ) {
+                        *value = v[k];
+                        *material = mat_lanes[k] as MaterialId;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The sample of every point of a cell that is constant there (no events, a constant
+/// state or a clamped base whose material is the same everywhere).
+fn constant_sample(start: &Start<'_>, no_events: bool, band: f32) -> Option<Sample> {
+    if !no_events {
+        return None;
+    }
+    let (distance, material) = match start {
+        Start::Constant(v, m) => (*v, m.unwrap_or(0)),
+        Start::Base(plan) => match (plan.clamped, plan.material.material()) {
+            (Some(c), MatOut::Const(m)) => (c, m),
+            _ => return None,
+        },
+        Start::AirFromBase(plan) => match plan.material.material() {
+            MatOut::Const(m) => (band, m),
+            MatOut::Value(_) => return None,
+        },
+        Start::AirFromBrick(_) | Start::Brick(_) => return None,
+    };
+    Some(Sample {
+        distance,
+        gradient: Vec2::ZERO,
+        material,
+    })
+}
+
+/// Lane register `r` of the gathered points as a point of numbers (padding repeats the
+/// last point).
+#[inline(always)]
+fn lane_point<L: Lanes, V: Val<L>>(l: L, pts: &[Vec2], r: usize) -> P2<V> {
+    let (mut x, mut y) = ([0.0f32; 16], [0.0f32; 16]);
+    let last = pts.len().saturating_sub(1);
+    for k in 0..L::WIDTH {
+        let p = pts
+            .get(r * L::WIDTH + k)
+            .or(pts.get(last))
+            .copied()
+            .unwrap_or(Vec2::ZERO);
+        x[k] = p.x;
+        y[k] = p.y;
+    }
+    P2::new(V::px(l, l.load(&x)), V::py(l, l.load(&y)))
+}
+
+/// `terrain::field::smin` (`max = false`) and `terrain::field::smax` (`max = true`).
+#[inline(always)]
+fn smooth<L: Lanes, V: Val<L>>(l: L, a: V, b: V, k: f32, max: bool) -> V {
+    let m = if max { a.max(l, b) } else { a.min(l, b) };
+    let h = V::cst(l, k)
+        .sub(l, a.sub(l, b).abs(l))
+        .max(l, V::cst(l, 0.0))
+        .div(l, V::cst(l, k));
+    let t = h.mul(l, h).scale(l, k).scale(l, 0.25);
+    let blended = if max { m.add(l, t) } else { m.sub(l, t) };
+    V::select(l, l.gt(h.v(), l.splat(0.0)), blended, m)
+}
+
+/// An event's constants at the current tick.
+#[derive(Clone, Copy)]
+struct Prepared {
+    kind: EventKind,
+    center: Vec2,
+    radius: f32,
+    rim: f32,
+    material: MaterialId,
+}
+
+/// `terrain::field::apply_event` on lanes.
+#[inline(always)]
+fn apply_event<L: Lanes, V: Val<L>>(
+    l: L,
+    d: V,
+    mat: L::I,
+    p: P2<V>,
+    e: &Prepared,
+    band: f32,
+) -> (V, L::I) {
+    let c = p.minus(l, e.center).length(l).offset(l, -e.radius);
+    let k = e.rim;
+    match e.kind {
+        EventKind::Carve => {
+            let nc = c.neg(l);
+            let v = if k > 0.0 {
+                smooth(l, d, nc, k, true)
+            } else {
+                d.max(l, nc)
+            };
+            (clamp(l, v, -band, band), mat)
+        }
+        EventKind::Fill => {
+            let wins = l.not(l.lt(d.v(), c.v()));
+            let v = if k > 0.0 {
+                smooth(l, d, c, k, false)
+            } else {
+                d.min(l, c)
+            };
+            let mat = l.select_i(wins, l.splat_i(i32::from(e.material)), mat);
+            (clamp(l, v, -band, band), mat)
+        }
+    }
+}
+
+/// `(x as u32).min(top)` for `x` in `[0, 2^31)` (a lattice coordinate).
+#[inline(always)]
+fn index_at_most<L: Lanes>(l: L, x: L::F, top: i32) -> L::I {
+    let i = l.to_i32(x);
+    let top = l.splat_i(top);
+    l.select_i(l.gt_i(i, top), top, i)
+}
+
+/// `Grid::interpolate` on lanes: the brick's bilinear value (and nearest material).
+#[inline(always)]
+fn brick<L: Lanes, V: Val<L>, F: Sdf>(
+    l: L,
+    t: &Terrain<F>,
+    id: u32,
+    cell: Option<usize>,
+    p: P2<V>,
+    material: bool,
+) -> (V, L::I) {
+    let grid = &t.grid;
+    let (Some(b), Some(cell)) = (grid.brick(id), cell) else {
+        return (V::cst(l, f32::NAN), l.splat_i(0));
+    };
+    let n = grid.brick_resolution();
+    let nf = n as f32;
+    let m = grid.cell_min_f32(cell);
+    let h = V::cst(l, grid.brick_spacing());
+    let u = clamp(l, p.x.offset(l, -m.x).div(l, h), 0.0, nf);
+    let v = clamp(l, p.y.offset(l, -m.y).div(l, h), 0.0, nf);
+    let (i, j) = (
+        index_at_most(l, u.v(), n as i32 - 1),
+        index_at_most(l, v.v(), n as i32 - 1),
+    );
+    let fu = u.offset_v(l, l.neg(l.to_f32(i)));
+    let fv = v.offset_v(l, l.neg(l.to_f32(j)));
+    let (mut ii, mut jj) = ([0i32; 16], [0i32; 16]);
+    l.store_i(i, &mut ii);
+    l.store_i(j, &mut jj);
+    let row = (n + 1) as usize;
+    let val = |i: i32, j: i32| {
+        b.values
+            .get(j as usize * row + i as usize)
+            .copied()
+            .unwrap_or(0.0)
+    };
+    let (mut v00, mut v10, mut v01, mut v11) = ([0.0; 16], [0.0; 16], [0.0; 16], [0.0; 16]);
+    for k in 0..L::WIDTH {
+        let (i, j) = (ii[k], jj[k]);
+        (v00[k], v10[k], v01[k], v11[k]) =
+            (val(i, j), val(i + 1, j), val(i, j + 1), val(i + 1, j + 1));
+    }
+    let (v00, v10, v01, v11) = (l.load(&v00), l.load(&v10), l.load(&v01), l.load(&v11));
+    let bottom = fu.scale_v(l, l.sub(v10, v00)).offset_v(l, v00);
+    let top = fu.scale_v(l, l.sub(v11, v01)).offset_v(l, v01);
+    let d = top.sub(l, bottom).mul(l, fv).add(l, bottom);
+    if !material {
+        return (d, l.splat_i(0));
+    }
+    let (mi, mj) = (
+        index_at_most(l, l.add(u.v(), l.splat(0.5)), n as i32),
+        index_at_most(l, l.add(v.v(), l.splat(0.5)), n as i32),
+    );
+    l.store_i(mi, &mut ii);
+    l.store_i(mj, &mut jj);
+    let mut mats = [0i32; 16];
+    for k in 0..L::WIDTH {
+        let at = jj[k] as usize * row + ii[k] as usize;
+        mats[k] = i32::from(b.materials.get(at).copied().unwrap_or(0));
+    }
+    (d, l.load_i(&mats))
+}

@@ -1,0 +1,120 @@
+//! The field's definition at one point (see the terrain module doc): the numbers it runs
+//! on, the smooth minimum and maximum, and what one event does to a distance and a
+//! material. The grid and the proofs apply events through [`apply_event`]; the batch lanes
+//! (`super::batch`) transcribe it operation for operation, which is what makes every path's
+//! results share bits.
+
+use glam::Vec2;
+
+use super::cell_tapes::CellTape;
+use crate::event::{Event, EventKind};
+use crate::exec;
+use crate::sample::MaterialId;
+use crate::sdf::Sdf;
+use craterfield_core::det::math::{Dual, Num, V2, nclamp, nmax, nmin};
+
+/// The numbers the field runs on: `f32` for distances, [`Dual`] for samples.
+pub(super) trait Lift: Num {
+    /// Whether this path reports materials (the `f32` path does not need them).
+    const MATERIAL: bool;
+    fn point(p: Vec2) -> V2<Self>;
+    /// The base field at `p`; `material` asks the `f32` path to report the material too.
+    fn base<F: Sdf>(f: &F, p: Vec2, material: bool) -> (Self, MaterialId);
+    /// The same from the base's tapes for the region holding `p`.
+    fn tape(plan: &CellTape, p: Vec2, material: bool) -> (Self, MaterialId);
+}
+
+impl Lift for f32 {
+    const MATERIAL: bool = false;
+    fn point(p: Vec2) -> V2<f32> {
+        V2::new(p.x, p.y)
+    }
+    fn base<F: Sdf>(f: &F, p: Vec2, material: bool) -> (f32, MaterialId) {
+        if material {
+            f.distance_material(p)
+        } else {
+            (f.distance(p), 0)
+        }
+    }
+    fn tape(plan: &CellTape, p: Vec2, material: bool) -> (f32, MaterialId) {
+        if material {
+            exec::point::value(&plan.material, p)
+        } else {
+            (exec::point::value(&plan.value, p).0, 0)
+        }
+    }
+}
+
+impl Lift for Dual {
+    const MATERIAL: bool = true;
+    fn point(p: Vec2) -> V2<Dual> {
+        let (x, y) = Dual::point(p);
+        V2::new(x, y)
+    }
+    fn base<F: Sdf>(f: &F, p: Vec2, _material: bool) -> (Dual, MaterialId) {
+        let s = f.sample(p);
+        (
+            Dual {
+                v: s.distance,
+                dx: s.gradient.x,
+                dy: s.gradient.y,
+            },
+            s.material,
+        )
+    }
+    fn tape(plan: &CellTape, p: Vec2, _material: bool) -> (Dual, MaterialId) {
+        exec::point::dual(&plan.material, p)
+    }
+}
+
+/// Smooth minimum (see the module doc); the select keeps `min`'s bits where `h == 0`.
+pub(super) fn smin<N: Num>(a: N, b: N, k: f32) -> N {
+    let m = nmin(a, b);
+    let h = nmax(N::constant(k) - (a - b).abs(), N::constant(0.0)) / N::constant(k);
+    if h.value() > 0.0 {
+        m - (h * h).scale(k).scale(0.25)
+    } else {
+        m
+    }
+}
+
+/// Smooth maximum (see the module doc).
+pub(super) fn smax<N: Num>(a: N, b: N, k: f32) -> N {
+    let m = nmax(a, b);
+    let h = nmax(N::constant(k) - (a - b).abs(), N::constant(0.0)) / N::constant(k);
+    if h.value() > 0.0 {
+        m + (h * h).scale(k).scale(0.25)
+    } else {
+        m
+    }
+}
+
+/// Applies one event at `p` (the field definition's loop body).
+#[inline]
+pub(super) fn apply_event<N: Num>(
+    d: N,
+    mat: MaterialId,
+    p: V2<N>,
+    e: &Event,
+    tick: u32,
+    band: f32,
+) -> (N, MaterialId) {
+    let Some(r) = e.radius_at(tick) else {
+        return (d, mat);
+    };
+    let c = p.minus(e.center_f32()).length().offset(-r);
+    let k = e.rim_f32();
+    match e.kind {
+        EventKind::Carve => {
+            let v = if k > 0.0 { smax(d, -c, k) } else { nmax(d, -c) };
+            (nclamp(v, -band, band), mat)
+        }
+        EventKind::Fill => {
+            // The fill wins where `nmin(d, c)` selects `c`.
+            let keeps_d = d.value() < c.value();
+            let wins = !keeps_d;
+            let v = if k > 0.0 { smin(d, c, k) } else { nmin(d, c) };
+            (nclamp(v, -band, band), if wins { e.material } else { mat })
+        }
+    }
+}

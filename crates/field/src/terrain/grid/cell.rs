@@ -1,0 +1,97 @@
+//! What the grid stores per cell and per brick, and the counters it keeps: plain data that
+//! the grid and the terrain's undo journal both read, so it lives apart from the grid's code.
+
+use serde::{Deserialize, Serialize};
+
+use crate::sample::MaterialId;
+
+/// Where an air cell takes its material from (carves keep the material that was there).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum MaterialSource {
+    /// The base field's material at the query point.
+    Base,
+    /// A constant material.
+    Constant(MaterialId),
+    /// The nearest lattice sample of a brick.
+    Brick(u32),
+}
+
+/// What a cell's field is before its listed events are applied.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CellState {
+    /// The base field, clamped to the band.
+    Base,
+    /// Constant `+M`, zero gradient (the whole cell was carved away with margin).
+    Air(MaterialSource),
+    /// Constant `-M`, zero gradient, constant material (the whole cell was filled).
+    Solid(MaterialId),
+    /// A baked brick, bilinearly interpolated.
+    Brick(u32),
+}
+
+impl CellState {
+    /// The brick this state references, if any.
+    pub fn brick(self) -> Option<u32> {
+        match self {
+            CellState::Brick(id) | CellState::Air(MaterialSource::Brick(id)) => Some(id),
+            _ => None,
+        }
+    }
+}
+
+/// Counters describing a grid, for diagnostics and tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct GridStats {
+    /// Number of cells.
+    pub cells: usize,
+    /// Longest event list of any cell (the per-query event cost bound).
+    pub max_cell_events: usize,
+    /// Sum of all list lengths.
+    pub total_cell_events: usize,
+    /// Bricks currently referenced by a cell.
+    pub bricks: usize,
+    /// Cells whose state is a brick.
+    pub brick_cells: usize,
+    /// Cells whose state is air.
+    pub air_cells: usize,
+    /// Cells whose state is solid.
+    pub solid_cells: usize,
+    /// Cells whose list is longer than the cap (only while they hold unsettled events).
+    pub over_cap_cells: usize,
+    /// Cell resets performed since the last rebuild.
+    pub resets: u64,
+    /// Bakes performed since the last rebuild.
+    pub bakes: u64,
+    /// Covered events dropped from lists since the last rebuild.
+    pub pruned: u64,
+}
+
+/// One cell: base state and the indices (ascending) of the events that can reach it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Cell {
+    pub(in crate::terrain) state: CellStateSlot,
+    pub(in crate::terrain) events: Vec<u32>,
+    /// Changes whenever the cell's field may change (a number never given to any other
+    /// content of any cell of this terrain), so callers can cache values by it.
+    pub(in crate::terrain) revision: u64,
+    /// The tick from which every listed event is settled (the field stops depending on the
+    /// tick).
+    pub(in crate::terrain) settled_at: u32,
+}
+
+/// A `CellState` with a `Default` (Base).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CellStateSlot(pub(in crate::terrain) CellState);
+
+impl Default for CellStateSlot {
+    fn default() -> Self {
+        CellStateSlot(CellState::Base)
+    }
+}
+
+/// A baked `(n+1) x (n+1)` lattice of distances and materials, row-major (y outer).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Brick {
+    pub(in crate::terrain) values: Vec<f32>,
+    pub(in crate::terrain) materials: Vec<MaterialId>,
+}

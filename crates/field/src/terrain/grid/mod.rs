@@ -1,0 +1,552 @@
+//! The explosion grid: a regular grid of cells, each with a base state and the list of the
+//! events that can reach it, plus the bricks (baked lattices) that bound a cell's list.
+//!
+//! This module is storage and geometry only; what the states mean and when lists are pruned
+//! or baked is decided by [`crate::terrain`]. Geometry predicates (disc touches
+//! cell, disc contains cell) are evaluated in `f64` with a guard that covers the `f32`
+//! rounding of the query path, so they are conservative for every `f32` query point that the
+//! `f32` cell lookup assigns to the cell.
+
+use crate::sample::MaterialId;
+use glam::Vec2;
+use thiserror::Error;
+
+mod cell;
+
+pub(crate) use cell::{Brick, Cell, CellStateSlot};
+pub use cell::{CellState, GridStats, MaterialSource};
+
+use super::journal::{Entry, Journal};
+use craterfield_core::det::math::{Num, V2, nclamp};
+
+/// Most cells a grid may have, so that memory stays bounded.
+pub const MAX_CELLS: u64 = 4_000_000;
+
+/// Largest accepted brick resolution (lattice intervals per cell side).
+pub const MAX_BRICK_RESOLUTION: u32 = 256;
+
+/// Why a grid could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum GridError {
+    /// The grid would have too many cells.
+    #[error("grid would have {cells} cells ({nx} x {ny}); at most {MAX_CELLS} are allowed")]
+    TooManyCells {
+        /// Requested total.
+        cells: f64,
+        /// Columns.
+        nx: f64,
+        /// Rows.
+        ny: f64,
+    },
+    /// The cell size is not a positive finite number.
+    #[error("grid cell size must be positive and finite, got {value}")]
+    BadCellSize {
+        /// The offending size.
+        value: f32,
+    },
+    /// The brick resolution is 0 or too large.
+    #[error("brick resolution must be in 1..={MAX_BRICK_RESOLUTION}, got {value}")]
+    BadBrickResolution {
+        /// The offending resolution.
+        value: u32,
+    },
+}
+
+/// An axis-aligned rectangle in `f64`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Rect {
+    pub(crate) min: [f64; 2],
+    pub(crate) max: [f64; 2],
+}
+
+impl Rect {
+    /// Largest coordinate magnitude.
+    fn extent(&self) -> f64 {
+        self.min[0].abs().max(self.max[0].abs()) + self.min[1].abs().max(self.max[1].abs())
+    }
+    /// Distance from `c` to the nearest point of the rectangle (0 inside).
+    pub(crate) fn near_dist(&self, c: [f64; 2]) -> f64 {
+        let dx = (self.min[0] - c[0]).max(0.0).max(c[0] - self.max[0]);
+        let dy = (self.min[1] - c[1]).max(0.0).max(c[1] - self.max[1]);
+        (dx * dx + dy * dy).sqrt()
+    }
+    /// Distance from `c` to the farthest corner.
+    pub(crate) fn far_dist(&self, c: [f64; 2]) -> f64 {
+        let dx = (c[0] - self.min[0]).abs().max((c[0] - self.max[0]).abs());
+        let dy = (c[1] - self.min[1]).abs().max((c[1] - self.max[1]).abs());
+        (dx * dx + dy * dy).sqrt()
+    }
+}
+
+/// The guard added to geometric tests so they hold for every `f32` evaluation: it bounds the
+/// rounding of `|p - c| - r` in `f32` (relative error a few `2^-24` of the magnitudes
+/// involved) and the rounding of the `f32` cell lookup, with a wide margin.
+/// `event_extent` is `|cx| + |cy| + r + k + M` of the event(s) involved.
+pub(crate) fn guard(event_extent: f64, rect: &Rect) -> f64 {
+    1.0 / 64.0 + (event_extent + rect.extent()) * (1.0 / 65536.0)
+}
+
+/// One cell as a reader sees it (a mirror of the grid, such as the GPU renderer's, or a
+/// tool): its state, the events that can reach it and its revision. The grid's storage stays
+/// private to the terrain, which alone changes it.
+#[derive(Clone, Copy, Debug)]
+pub struct CellView<'g> {
+    cell: &'g Cell,
+}
+
+impl<'g> CellView<'g> {
+    /// The cell's field before its listed events are applied.
+    pub fn state(&self) -> CellState {
+        self.cell.state.0
+    }
+
+    /// Indices into the terrain's event log, ascending, of the events that can reach it.
+    pub fn events(&self) -> &'g [u32] {
+        &self.cell.events
+    }
+
+    /// Changes whenever the cell's field may change, and is never given to other content of
+    /// any cell of the terrain: a mirror that remembers the revision it sent knows whether
+    /// the cell changed since, without comparing contents.
+    pub fn revision(&self) -> u64 {
+        self.cell.revision
+    }
+}
+
+/// The grid: geometry, cells and bricks.
+#[derive(Clone, Debug)]
+pub struct Grid {
+    origin: Vec2,
+    cell_size: f32,
+    /// `1 / cell_size` when the cell size is a power of two (the reciprocal is exact).
+    inv_pow2: Option<f32>,
+    nx: u32,
+    ny: u32,
+    resolution: u32,
+    pub(in crate::terrain) cells: Vec<Cell>,
+    bricks: Vec<Brick>,
+    free_bricks: Vec<u32>,
+    pub(in crate::terrain) stats: GridStats,
+    /// The undo journal, when rollback is enabled.
+    pub(in crate::terrain) journal: Option<Journal>,
+}
+
+impl Grid {
+    /// Columns and rows of a grid covering `[min, max]` (rounded outwards to whole cells),
+    /// checked against the limits without allocating anything.
+    pub(crate) fn dims_for(
+        min: Vec2,
+        max: Vec2,
+        cell_size: f32,
+        resolution: u32,
+    ) -> Result<(u32, u32), GridError> {
+        if !(cell_size.is_finite() && cell_size > 0.0) {
+            return Err(GridError::BadCellSize { value: cell_size });
+        }
+        if resolution == 0 || resolution > MAX_BRICK_RESOLUTION {
+            return Err(GridError::BadBrickResolution { value: resolution });
+        }
+        let s = f64::from(cell_size);
+        let nx = ((f64::from(max.x) - f64::from(min.x)) / s).ceil().max(1.0);
+        let ny = ((f64::from(max.y) - f64::from(min.y)) / s).ceil().max(1.0);
+        let cells = nx * ny;
+        if cells.is_nan() || cells > MAX_CELLS as f64 {
+            return Err(GridError::TooManyCells { cells, nx, ny });
+        }
+        Ok((nx as u32, ny as u32))
+    }
+
+    /// A grid of `Base` cells covering `[min, max]` (rounded outwards to whole cells).
+    pub(crate) fn new(
+        min: Vec2,
+        max: Vec2,
+        cell_size: f32,
+        resolution: u32,
+    ) -> Result<Grid, GridError> {
+        let (nx, ny) = Grid::dims_for(min, max, cell_size, resolution)?;
+        let inv = 1.0 / cell_size;
+        let exact =
+            cell_size.to_bits() & 0x007f_ffff == 0 && inv.is_normal() && inv * cell_size == 1.0;
+        Ok(Grid {
+            origin: min,
+            cell_size,
+            inv_pow2: exact.then_some(inv),
+            nx,
+            ny,
+            resolution,
+            cells: vec![Cell::default(); nx as usize * ny as usize],
+            bricks: Vec::new(),
+            free_bricks: Vec::new(),
+            stats: GridStats::default(),
+            journal: None,
+        })
+    }
+
+    /// Resets every cell to `Base` with an empty list and drops all bricks.
+    pub(crate) fn clear(&mut self) {
+        for c in &mut self.cells {
+            *c = Cell::default();
+        }
+        self.bricks.clear();
+        self.free_bricks.clear();
+        self.stats = GridStats::default();
+    }
+
+    /// Columns and rows.
+    pub fn dims(&self) -> (u32, u32) {
+        (self.nx, self.ny)
+    }
+
+    /// Lower-left corner of the grid.
+    pub fn origin(&self) -> Vec2 {
+        self.origin
+    }
+
+    /// Side length of a cell.
+    pub fn cell_size(&self) -> f32 {
+        self.cell_size
+    }
+
+    /// The cell holding `p`, or `None` outside the grid (and for NaN).
+    #[inline]
+    pub fn cell_index(&self, p: Vec2) -> Option<usize> {
+        let (fx, fy) = match self.inv_pow2 {
+            // Dividing by a power of two and multiplying by its (exact) reciprocal round
+            // the same exact quotient: the same bits, without a division.
+            Some(inv) => ((p.x - self.origin.x) * inv, (p.y - self.origin.y) * inv),
+            None => (
+                (p.x - self.origin.x) / self.cell_size,
+                (p.y - self.origin.y) / self.cell_size,
+            ),
+        };
+        if !(fx >= 0.0 && fx < self.nx as f32 && fy >= 0.0 && fy < self.ny as f32) {
+            return None;
+        }
+        // Non-negative and below nx, ny (exact in f32, both < 2^24): the casts floor.
+        let ix = (fx as u32).min(self.nx - 1);
+        let iy = (fy as u32).min(self.ny - 1);
+        Some(iy as usize * self.nx as usize + ix as usize)
+    }
+
+    /// Column and row of cell `i`.
+    fn coords(&self, i: usize) -> (u32, u32) {
+        let nx = self.nx as usize;
+        ((i % nx) as u32, (i / nx) as u32)
+    }
+
+    /// Lower-left corner of cell `i` in `f32`, as the brick lattice uses it.
+    pub(crate) fn cell_min_f32(&self, i: usize) -> Vec2 {
+        let (ix, iy) = self.coords(i);
+        Vec2::new(
+            self.origin.x + ix as f32 * self.cell_size,
+            self.origin.y + iy as f32 * self.cell_size,
+        )
+    }
+
+    /// The rectangle of cell `i` in `f64`.
+    pub(crate) fn cell_rect(&self, i: usize) -> Rect {
+        let (ix, iy) = self.coords(i);
+        let s = f64::from(self.cell_size);
+        let x0 = f64::from(self.origin.x) + f64::from(ix) * s;
+        let y0 = f64::from(self.origin.y) + f64::from(iy) * s;
+        Rect {
+            min: [x0, y0],
+            max: [x0 + s, y0 + s],
+        }
+    }
+
+    /// Cells whose rectangle is within `reach` (plus the guard) of `center`, in ascending
+    /// index order.
+    pub(crate) fn cells_touching(
+        &self,
+        center: [f64; 2],
+        reach: f64,
+        event_extent: f64,
+    ) -> Vec<usize> {
+        let s = f64::from(self.cell_size);
+        let pad = reach + 1.0 + (event_extent + 4.0 * s) / 1024.0;
+        let lo = |c: f64, o: f32| ((c - pad - f64::from(o)) / s).floor();
+        let hi = |c: f64, o: f32| ((c + pad - f64::from(o)) / s).floor();
+        let x0 = lo(center[0], self.origin.x).max(0.0);
+        let y0 = lo(center[1], self.origin.y).max(0.0);
+        let x1 = hi(center[0], self.origin.x).min(f64::from(self.nx) - 1.0);
+        let y1 = hi(center[1], self.origin.y).min(f64::from(self.ny) - 1.0);
+        let mut out = Vec::new();
+        if !(x0 <= x1 && y0 <= y1) {
+            return out;
+        }
+        for iy in (y0 as u32)..=(y1 as u32) {
+            for ix in (x0 as u32)..=(x1 as u32) {
+                let i = iy as usize * self.nx as usize + ix as usize;
+                let rect = self.cell_rect(i);
+                if rect.near_dist(center) <= reach + 2.0 * guard(event_extent, &rect) {
+                    out.push(i);
+                }
+            }
+        }
+        out
+    }
+
+    /// Lattice intervals per cell side.
+    pub fn brick_resolution(&self) -> u32 {
+        self.resolution
+    }
+
+    /// Lattice spacing `h = cell_size / n`.
+    pub fn brick_spacing(&self) -> f32 {
+        self.cell_size / self.resolution as f32
+    }
+
+    /// The lattice point `(i, j)` of cell `cell`.
+    pub(crate) fn lattice_point(&self, cell: usize, i: u32, j: u32) -> Vec2 {
+        let m = self.cell_min_f32(cell);
+        let h = self.brick_spacing();
+        Vec2::new(m.x + i as f32 * h, m.y + j as f32 * h)
+    }
+
+    /// Stores a baked brick for `cell`, reusing the cell's current brick slot or a free one;
+    /// returns its id. Brick count never exceeds the cell count.
+    pub(crate) fn store_brick(&mut self, cell: usize, brick: Brick) -> u32 {
+        let current = self.cells.get(cell).and_then(|c| c.state.0.brick());
+        let slot = current
+            .filter(|&id| (id as usize) < self.bricks.len())
+            .or_else(|| {
+                let freed = self.free_bricks.pop()?;
+                self.record(Entry::FreePopped(freed));
+                Some(freed).filter(|&id| (id as usize) < self.bricks.len())
+            });
+        match slot {
+            Some(id) => {
+                self.replace_brick(id, brick);
+                id
+            }
+            None => {
+                self.bricks.push(brick);
+                self.record(Entry::BrickPushed);
+                (self.bricks.len() - 1) as u32
+            }
+        }
+    }
+
+    /// Overwrites brick slot `id`, journaling what it held.
+    fn replace_brick(&mut self, id: u32, brick: Brick) {
+        if let Some(slot) = self.bricks.get_mut(id as usize) {
+            let before = std::mem::replace(slot, brick);
+            if let Some(j) = &mut self.journal {
+                j.push(Entry::Brick { id, before });
+            }
+        }
+    }
+
+    /// Every brick slot (freed ones are empty) and the free list, for a state snapshot.
+    pub(in crate::terrain) fn brick_slots(&self) -> (&[Brick], &[u32]) {
+        (&self.bricks, &self.free_bricks)
+    }
+
+    /// Replaces every cell, brick slot, the free list and the counters at once (a state
+    /// snapshot the terrain has checked). The journal is left to the caller.
+    pub(in crate::terrain) fn replace_contents(
+        &mut self,
+        cells: Vec<Cell>,
+        bricks: Vec<Brick>,
+        free_bricks: Vec<u32>,
+        stats: GridStats,
+    ) {
+        self.cells = cells;
+        self.bricks = bricks;
+        self.free_bricks = free_bricks;
+        self.stats = stats;
+    }
+
+    /// Records a pre-image when journaling.
+    pub(crate) fn record(&mut self, e: Entry) {
+        if let Some(j) = &mut self.journal {
+            j.push(e);
+        }
+    }
+
+    /// Restores a grid-level pre-image (the terrain undoes its own kinds).
+    pub(crate) fn undo(&mut self, e: Entry) {
+        match e {
+            Entry::Cell { cell, before, .. } => {
+                if let Some(c) = self.cells.get_mut(cell) {
+                    *c = before;
+                }
+            }
+            Entry::Brick { id, before } => {
+                if let Some(slot) = self.bricks.get_mut(id as usize) {
+                    *slot = before;
+                }
+            }
+            Entry::BrickPushed => {
+                self.bricks.pop();
+            }
+            Entry::FreePushed => {
+                self.free_bricks.pop();
+            }
+            Entry::FreePopped(id) => self.free_bricks.push(id),
+            Entry::Event | Entry::Tick(_) => {}
+        }
+    }
+
+    /// Sets the state of `cell`, freeing a brick it no longer references.
+    pub(crate) fn set_state(&mut self, cell: usize, state: CellState) {
+        let Some(c) = self.cells.get_mut(cell) else {
+            return;
+        };
+        let old = c.state.0.brick();
+        c.state = CellStateSlot(state);
+        let dropped = old.filter(|&id| state.brick() != Some(id));
+        if let Some(id) = dropped.filter(|&id| (id as usize) < self.bricks.len()) {
+            self.replace_brick(id, Brick::default());
+            self.free_bricks.push(id);
+            self.record(Entry::FreePushed);
+        }
+    }
+
+    /// Bilinear interpolation of brick `id` at `p` in cell `cell` (its value and gradient),
+    /// and the material of the nearest lattice sample. `None` for a missing brick.
+    pub(crate) fn interpolate<N: Num>(
+        &self,
+        id: u32,
+        cell: usize,
+        p: V2<N>,
+    ) -> Option<(N, MaterialId)> {
+        let b = self.bricks.get(id as usize)?;
+        let n = self.resolution;
+        let nf = n as f32;
+        let m = self.cell_min_f32(cell);
+        let h = N::constant(self.brick_spacing());
+        let u = nclamp(p.x.offset(-m.x) / h, 0.0, nf);
+        let v = nclamp(p.y.offset(-m.y) / h, 0.0, nf);
+        // u, v in [0, n] (NaN clamps to 0): the casts floor and stay in range.
+        let i = (u.value() as u32).min(n - 1);
+        let j = (v.value() as u32).min(n - 1);
+        let fu = u.offset(-(i as f32));
+        let fv = v.offset(-(j as f32));
+        let row = (n + 1) as usize;
+        let at = |i: u32, j: u32| j as usize * row + i as usize;
+        let val = |i: u32, j: u32| b.values.get(at(i, j)).copied().unwrap_or(0.0);
+        let (v00, v10, v01, v11) = (val(i, j), val(i + 1, j), val(i, j + 1), val(i + 1, j + 1));
+        let bottom = fu.scale(v10 - v00).offset(v00);
+        let top = fu.scale(v11 - v01).offset(v01);
+        let d = (top - bottom) * fv + bottom;
+        let mi = ((u.value() + 0.5) as u32).min(n);
+        let mj = ((v.value() + 0.5) as u32).min(n);
+        let mat = b.materials.get(at(mi, mj)).copied().unwrap_or(0);
+        Some((d, mat))
+    }
+
+    /// The material of the nearest lattice sample of brick `id` at `p` in cell `cell`.
+    pub(crate) fn brick_material(&self, id: u32, cell: usize, p: Vec2) -> MaterialId {
+        self.interpolate::<f32>(id, cell, V2::new(p.x, p.y))
+            .map(|(_, m)| m)
+            .unwrap_or(0)
+    }
+
+    /// Brick `id`, if it exists.
+    /// The number of cells (`nx * ny`, row-major).
+    pub fn cell_count(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Cell `i`, or `None` past the end.
+    pub fn cell(&self, i: usize) -> Option<CellView<'_>> {
+        self.cells.get(i).map(|cell| CellView { cell })
+    }
+
+    /// Every cell, row-major.
+    pub fn cells(&self) -> impl ExactSizeIterator<Item = CellView<'_>> {
+        self.cells.iter().map(|cell| CellView { cell })
+    }
+
+    /// The cells whose revision differs from the one a mirror last saw (`seen[i]` for cell
+    /// `i`; a cell without an entry counts as changed): the changes since the mirror's copy.
+    pub fn changed_since<'a>(&'a self, seen: &'a [u64]) -> impl Iterator<Item = usize> + 'a {
+        self.cells
+            .iter()
+            .enumerate()
+            .filter(move |(i, c)| seen.get(*i) != Some(&c.revision))
+            .map(|(i, _)| i)
+    }
+
+    /// Brick `id`'s lattice, row-major (y outer), `(resolution + 1)^2` distances and as many
+    /// materials; `None` for an id no cell references.
+    pub fn brick_samples(&self, id: u32) -> Option<(&[f32], &[MaterialId])> {
+        self.brick(id)
+            .map(|b| (b.values.as_slice(), b.materials.as_slice()))
+    }
+
+    pub(crate) fn brick(&self, id: u32) -> Option<&Brick> {
+        self.bricks.get(id as usize)
+    }
+
+    /// Number of live bricks.
+    pub(crate) fn live_bricks(&self) -> usize {
+        self.bricks.len() - self.free_bricks.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cell_lookup_never_goes_out_of_range() {
+        let g = Grid::new(Vec2::new(-10.0, -10.0), Vec2::new(10.0, 30.0), 4.0, 4).unwrap();
+        assert_eq!(g.dims(), (5, 10));
+        assert_eq!(g.cell_index(Vec2::new(-10.0, -10.0)), Some(0));
+        assert_eq!(g.cell_index(Vec2::new(9.999, 29.999)), Some(49));
+        for p in [
+            Vec2::new(10.0, 0.0),
+            Vec2::new(-10.001, 0.0),
+            Vec2::new(f32::NAN, 0.0),
+            Vec2::new(0.0, f32::INFINITY),
+            Vec2::new(f32::NEG_INFINITY, 0.0),
+        ] {
+            assert_eq!(g.cell_index(p), None, "{p}");
+        }
+    }
+
+    #[test]
+    fn rejects_huge_grids_and_bad_sizes() {
+        let e = Grid::new(Vec2::splat(-1e5), Vec2::splat(1e5), 1.0, 4).unwrap_err();
+        assert!(e.to_string().contains("cells"), "{e}");
+        assert!(
+            Grid::new(Vec2::ZERO, Vec2::ONE, f32::NAN, 4)
+                .unwrap_err()
+                .to_string()
+                .contains("NaN")
+        );
+        assert!(Grid::new(Vec2::ZERO, Vec2::ONE, 1.0, 0).is_err());
+    }
+
+    #[test]
+    fn touching_cells_are_conservative() {
+        let g = Grid::new(Vec2::ZERO, Vec2::splat(64.0), 8.0, 4).unwrap();
+        let hit = g.cells_touching([32.0, 32.0], 4.0, 100.0);
+        // The disc of radius 4 at a corner shared by four cells touches all four.
+        assert_eq!(hit.len(), 4);
+        let hit = g.cells_touching([-100.0, 32.0], 4.0, 100.0);
+        assert!(hit.is_empty());
+    }
+
+    /// `sum_i w_i |p - q_i|` over the unit square peaks at the centre, at `1/sqrt(2)`: the
+    /// bilinear error bound `L h / sqrt(2)` relies on it.
+    #[test]
+    fn bilinear_distance_weight_bound() {
+        let mut worst = 0.0f64;
+        for a in 0..=100 {
+            for b in 0..=100 {
+                let (x, y) = (a as f64 / 100.0, b as f64 / 100.0);
+                let s = (1.0 - x) * (1.0 - y) * (x * x + y * y).sqrt()
+                    + x * (1.0 - y) * ((1.0 - x).powi(2) + y * y).sqrt()
+                    + (1.0 - x) * y * (x * x + (1.0 - y).powi(2)).sqrt()
+                    + x * y * ((1.0 - x).powi(2) + (1.0 - y).powi(2)).sqrt();
+                worst = worst.max(s);
+            }
+        }
+        assert!(worst <= std::f64::consts::FRAC_1_SQRT_2 + 1e-12, "{worst}");
+    }
+}

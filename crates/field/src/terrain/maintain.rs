@@ -1,0 +1,262 @@
+//! Keeping the explosion grid: listing a new event in the cells it reaches, the exact
+//! pruning of those lists (cell resets and covered events), baking over-long lists into
+//! bricks, and rebuilding everything after the tick moves back. The module doc of the
+//! terrain proves the listing and the pruning bitwise equal to the brute force, and bounds
+//! a brick's error.
+
+use super::Terrain;
+use super::grid::{self, Brick, CellState, MaterialSource};
+use crate::event::{Event, EventKind};
+use crate::sdf::Sdf;
+use craterfield_core::det::quant::FIXED_ONE;
+
+/// Exact `f64` distance between two fixed-point centres, in world units.
+fn center_dist(a: &Event, b: &Event) -> f64 {
+    let dx = (i64::from(a.center[0]) - i64::from(b.center[0])) as f64;
+    let dy = (i64::from(a.center[1]) - i64::from(b.center[1])) as f64;
+    (dx * dx + dy * dy).sqrt() / f64::from(FIXED_ONE)
+}
+
+/// Whether one of two discs can lie inside the other: their centres no farther apart than
+/// their radii differ, tested exactly on the fixed-point integers. Every pair the covering
+/// tests of [`Terrain::prune_new`] accept passes it (they ask for the difference to exceed
+/// the distance by a guard of at least 1/32 unit, far past `f64` rounding), so it skips the
+/// square root and the guards of most pairs without changing a decision.
+fn may_nest(a: &Event, b: &Event) -> bool {
+    let dx = i128::from(a.center[0]) - i128::from(b.center[0]);
+    let dy = i128::from(a.center[1]) - i128::from(b.center[1]);
+    let dr = i128::from(a.radius) - i128::from(b.radius);
+    dx * dx + dy * dy <= dr * dr
+}
+
+fn fixed_f64(v: i32) -> f64 {
+    f64::from(v) / f64::from(FIXED_ONE)
+}
+
+/// `|cx| + |cy| + r + k` of an event, world units (for guards).
+fn event_extent(e: &Event) -> f64 {
+    fixed_f64(e.center[0]).abs()
+        + fixed_f64(e.center[1]).abs()
+        + fixed_f64(e.radius)
+        + fixed_f64(e.rim)
+}
+
+impl<F: Sdf> Terrain<F> {
+    /// Rebuilds the grid by replaying every event at the current tick.
+    pub(super) fn rebuild(&mut self) {
+        self.grid.clear();
+        for i in 0..self.grid.cells.len() {
+            let revision = self.new_revision();
+            if let Some(c) = self.grid.cells.get_mut(i) {
+                c.revision = revision;
+            }
+        }
+        if let Some(j) = &mut self.grid.journal {
+            j.reset();
+        }
+        self.over_cap.clear();
+        for idx in 0..self.events.len() as u32 {
+            self.insert(idx);
+        }
+    }
+
+    /// Lists event `idx` in every cell it can reach, then prunes those cells.
+    /// The cells whose lists an event joins.
+    pub(super) fn cells_of(&self, e: &Event) -> Vec<usize> {
+        let band = f64::from(self.options.band);
+        let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
+        let extent = event_extent(e) + band;
+        let reach = fixed_f64(e.radius) + fixed_f64(e.rim) + band;
+        self.grid.cells_touching(center, reach, extent)
+    }
+
+    /// The first cell `e` would join whose list is already `max_cell_events` long.
+    pub(super) fn full_cell_for(&self, e: &Event) -> Option<usize> {
+        let max = self.options.max_cell_events;
+        self.cells_of(e).into_iter().find(|&cell| {
+            self.grid
+                .cells
+                .get(cell)
+                .is_some_and(|c| c.events.len() >= max)
+        })
+    }
+
+    pub(super) fn insert(&mut self, idx: u32) {
+        let Some(e) = self.events.get(idx as usize).copied() else {
+            return;
+        };
+        let settled_at = e.tick.saturating_add(u32::from(e.grow_ticks));
+        for cell in self.cells_of(&e) {
+            self.record_cell(cell);
+            let revision = self.new_revision();
+            if let Some(c) = self.grid.cells.get_mut(cell) {
+                c.events.push(idx);
+                c.revision = revision;
+                c.settled_at = c.settled_at.max(settled_at);
+            }
+            self.prune_new(cell, idx, &e);
+            self.compact(cell);
+        }
+    }
+
+    /// Cell reset and covered-event pruning for the event `idx` just appended to `cell`.
+    pub(super) fn prune_new(&mut self, cell: usize, idx: u32, e: &Event) {
+        if !(e.is_sharp() && e.is_settled(self.tick)) {
+            return;
+        }
+        let band = f64::from(self.options.band);
+        let rect = self.grid.cell_rect(cell);
+        let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
+        let g = 2.0 * grid::guard(event_extent(e) + band, &rect);
+        let Some(c) = self.grid.cells.get(cell) else {
+            return;
+        };
+        // 1. Cell reset.
+        if rect.far_dist(center) + band + g <= fixed_f64(e.radius) {
+            let new_state = match e.kind {
+                EventKind::Fill => Some(CellState::Solid(e.material)),
+                EventKind::Carve => {
+                    let has_fill = c.events.iter().any(|&i| {
+                        self.events
+                            .get(i as usize)
+                            .is_none_or(|x| x.kind == EventKind::Fill)
+                    });
+                    if has_fill {
+                        None
+                    } else {
+                        Some(CellState::Air(match c.state.0 {
+                            CellState::Base => MaterialSource::Base,
+                            CellState::Air(src) => src,
+                            CellState::Solid(m) => MaterialSource::Constant(m),
+                            CellState::Brick(id) => MaterialSource::Brick(id),
+                        }))
+                    }
+                }
+            };
+            if let Some(state) = new_state {
+                self.grid.set_state(cell, state);
+                if let Some(c) = self.grid.cells.get_mut(cell) {
+                    c.events.clear();
+                }
+                self.over_cap.remove(&cell);
+                self.grid.stats.resets += 1;
+                return;
+            }
+        }
+        // 2. Covered events, within the run of sharp same-kind same-material events that
+        //    ends with the new one.
+        let list = &c.events;
+        let Some(&last) = list.last() else { return };
+        if last != idx {
+            return;
+        }
+        let mut drop_new = false;
+        let mut drop: Vec<usize> = Vec::new();
+        for pos in (0..list.len().saturating_sub(1)).rev() {
+            let Some(x) = list.get(pos).and_then(|&i| self.events.get(i as usize)) else {
+                break;
+            };
+            let same_run = x.kind == e.kind
+                && x.is_sharp()
+                && (e.kind == EventKind::Carve || x.material == e.material);
+            if !same_run {
+                break;
+            }
+            if !x.is_settled(self.tick) || !may_nest(x, e) {
+                continue;
+            }
+            let dist = center_dist(x, e);
+            let g = 2.0 * grid::guard(event_extent(x) + event_extent(e) + band, &rect);
+            let (rx, re) = (fixed_f64(x.radius), fixed_f64(e.radius));
+            if re >= rx + dist + g {
+                drop.push(pos);
+            } else if rx >= re + dist + g {
+                drop_new = true;
+                break;
+            }
+        }
+        let Some(c) = self.grid.cells.get_mut(cell) else {
+            return;
+        };
+        let mut pruned = drop.len() as u64;
+        if drop_new {
+            c.events.pop();
+            pruned += 1;
+        }
+        // `drop` is in descending position order, so removals don't shift later ones.
+        for pos in drop {
+            if pos < c.events.len() {
+                c.events.remove(pos);
+            }
+        }
+        self.grid.stats.pruned += pruned;
+    }
+
+    /// The brick of `cell`'s state and its first `prefix` events: its field at the
+    /// `(n+1) x (n+1)` lattice, on the SIMD lanes where the base has tapes (the same bits
+    /// as the point path, which does it otherwise).
+    fn bake(&self, cell: usize, prefix: usize) -> Brick {
+        let n = self.grid.brick_resolution();
+        let points: Vec<_> = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| (i, j)))
+            .map(|(i, j)| self.grid.lattice_point(cell, i, j))
+            .collect();
+        let mut brick = Brick {
+            values: vec![0.0; points.len()],
+            materials: vec![0; points.len()],
+        };
+        if !self.bake_lattice(
+            cell,
+            prefix,
+            &points,
+            &mut brick.values,
+            &mut brick.materials,
+        ) {
+            for (k, &q) in points.iter().enumerate() {
+                (brick.values[k], brick.materials[k]) =
+                    self.eval_cell::<f32, true>(q, cell, prefix);
+            }
+        }
+        brick
+    }
+
+    /// Bakes the longest settled prefix of an over-long list into a brick.
+    pub(super) fn compact(&mut self, cell: usize) {
+        let cap = self.options.cell_cap;
+        let Some(c) = self.grid.cells.get(cell) else {
+            return;
+        };
+        if c.events.len() <= cap {
+            self.over_cap.remove(&cell);
+            return;
+        }
+        let prefix = c
+            .events
+            .iter()
+            .take_while(|&&i| {
+                self.events
+                    .get(i as usize)
+                    .is_some_and(|e| e.is_settled(self.tick))
+            })
+            .count();
+        if prefix > 0 {
+            let brick = self.bake(cell, prefix);
+            let id = self.grid.store_brick(cell, brick);
+            self.grid.set_state(cell, CellState::Brick(id));
+            if let Some(c) = self.grid.cells.get_mut(cell) {
+                c.events.drain(..prefix.min(c.events.len()));
+            }
+            self.grid.stats.bakes += 1;
+        }
+        if self
+            .grid
+            .cells
+            .get(cell)
+            .is_some_and(|c| c.events.len() > cap)
+        {
+            self.over_cap.insert(cell);
+        } else {
+            self.over_cap.remove(&cell);
+        }
+    }
+}

@@ -1,0 +1,270 @@
+//! A plan compiled once per frame for the CPU tracer: every node's primitive, guard, lift
+//! and shape turned into the lane-ready constants that `map` reads (rotation matrices in
+//! row order, reciprocals, blend factors).
+
+use glam::{Mat3, Vec2, Vec3};
+
+use crate::noise::FbmLanes;
+use crate::plan3d::{Guard, Hash, Lift, Node, Plan, Prim, PrimKind, Shape, VALUE_NOISE3_SLOPE};
+
+/// A primitive with its per-frame constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PrimC {
+    pub(super) centre: Vec3,
+    pub(super) rot: Option<[f32; 9]>,
+    pub(super) kind: PrimK,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub(super) enum PrimK {
+    Sphere {
+        r: f32,
+    },
+    Box {
+        half: Vec3,
+    },
+    RoundBox {
+        inner: Vec3,
+        r: f32,
+    },
+    Capsule {
+        a: Vec3,
+        ba: Vec3,
+        inv_baba: f32,
+        r: f32,
+    },
+    Torus {
+        major: f32,
+        minor: f32,
+    },
+    Cylinder {
+        r: f32,
+        h: f32,
+    },
+    CappedCone {
+        h: f32,
+        r1: f32,
+        r2: f32,
+        k2: Vec2,
+        inv_k2k2: f32,
+    },
+    Octahedron {
+        s: f32,
+    },
+    Ellipsoid {
+        inv_r: Vec3,
+        inv_r2: Vec3,
+    },
+    /// `p.y - offset` (an up-facing plane, the common case).
+    PlaneY {
+        offset: f32,
+    },
+    Plane {
+        normal: Vec3,
+        offset: f32,
+    },
+}
+
+/// A node's geometry with its per-frame constants.
+#[derive(Clone, Debug)]
+pub(super) enum ShapeC {
+    Prim(PrimC),
+    Blend {
+        inv_k: f32,
+        k_quarter: f32,
+        parts: Vec<PrimC>,
+    },
+    Displaced {
+        prim: PrimC,
+        amp: f32,
+        freq: f32,
+        scale: f32,
+    },
+    Rows {
+        part: PrimC,
+        spacing: f32,
+        inv_spacing: f32,
+        count: u32,
+        nearest: bool,
+    },
+    Mandelbulb {
+        centre: Vec3,
+        iterations: u32,
+        bailout: f32,
+        /// Beyond `radius + margin` from the centre every lane takes the distance to the
+        /// sphere of this radius (which contains the bulb) instead of the iteration.
+        skip: Option<(f32, f32)>,
+    },
+}
+
+/// A node ready to evaluate.
+#[derive(Clone, Debug)]
+pub(crate) struct NodeC {
+    pub(super) material: i32,
+    /// The height subtracted from `p.y` (0 for `Lift::None`).
+    pub(super) lift: f32,
+    /// Whether the lift is the terrain height computed at evaluation time (counted as an
+    /// SDF evaluation; the value is the same every call, so it is computed once per frame).
+    pub(super) ground: bool,
+    pub(super) guard: Option<Guard>,
+    pub(super) shape: ShapeC,
+}
+
+/// The terrain, prepared.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TerrainC {
+    pub(crate) fbm: FbmLanes,
+    pub(crate) material: i32,
+    pub(crate) step_scale: f32,
+    pub(crate) analytic_normal: bool,
+}
+
+/// Everything `map` needs, computed once per frame.
+#[derive(Clone, Debug)]
+pub(crate) struct SceneConstants {
+    pub(crate) terrain: Option<TerrainC>,
+    pub(crate) early_out: Option<f32>,
+    pub(crate) nodes: Vec<NodeC>,
+    pub(crate) material_ids: bool,
+    pub(crate) hash: Hash,
+}
+
+/// The radius around a power-8 Mandelbulb's centre outside which its distance estimate
+/// (any iteration count, bailout >= 4) stays positive; see the tests.
+pub(crate) const BULB_RADIUS: f32 = 1.25;
+
+impl PrimC {
+    fn new(prim: &Prim) -> PrimC {
+        let rot = prim.rotation.map(row_major);
+        let kind = match prim.kind {
+            PrimKind::Sphere { r } => PrimK::Sphere { r },
+            PrimKind::Box { half } => PrimK::Box { half },
+            PrimKind::RoundBox { half, r } => PrimK::RoundBox {
+                inner: half - Vec3::splat(r),
+                r,
+            },
+            PrimKind::Capsule { a, b, r } => {
+                let ba = b - a;
+                let baba = ba.dot(ba);
+                PrimK::Capsule {
+                    a,
+                    ba,
+                    inv_baba: if baba > 0.0 { 1.0 / baba } else { 0.0 },
+                    r,
+                }
+            }
+            PrimKind::Torus { major, minor } => PrimK::Torus { major, minor },
+            PrimKind::Cylinder { r, h } => PrimK::Cylinder { r, h },
+            PrimKind::CappedCone { h, r1, r2 } => {
+                let k2 = Vec2::new(r2 - r1, 2.0 * h);
+                PrimK::CappedCone {
+                    h,
+                    r1,
+                    r2,
+                    k2,
+                    inv_k2k2: 1.0 / k2.dot(k2),
+                }
+            }
+            PrimKind::Octahedron { s } => PrimK::Octahedron { s },
+            PrimKind::Ellipsoid { r } => PrimK::Ellipsoid {
+                inv_r: r.recip(),
+                inv_r2: (r * r).recip(),
+            },
+            PrimKind::Plane { normal, offset } if normal == Vec3::Y && rot.is_none() => {
+                // Fold the translation into the offset: no per-lane subtraction.
+                return PrimC {
+                    centre: Vec3::ZERO,
+                    rot: None,
+                    kind: PrimK::PlaneY {
+                        offset: offset + prim.centre.y,
+                    },
+                };
+            }
+            PrimKind::Plane { normal, offset } => PrimK::Plane { normal, offset },
+        };
+        PrimC {
+            centre: prim.centre,
+            rot,
+            kind,
+        }
+    }
+}
+
+fn row_major(m: Mat3) -> [f32; 9] {
+    let r = m.transpose().to_cols_array();
+    [r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8]]
+}
+
+impl SceneConstants {
+    /// Compiles the plan's nodes and terrain (the plan must be valid).
+    pub(super) fn new(plan: &Plan) -> SceneConstants {
+        let terrain = plan.terrain.map(|t| TerrainC {
+            fbm: FbmLanes::new(&t.fbm, plan.hash),
+            material: t.material as i32,
+            step_scale: t.step_scale,
+            analytic_normal: t.analytic_normal,
+        });
+        let nodes = plan.nodes.iter().map(|n| compile_node(plan, n)).collect();
+        SceneConstants {
+            terrain,
+            early_out: plan.early_out,
+            nodes,
+            material_ids: plan.material_ids,
+            hash: plan.hash,
+        }
+    }
+}
+
+fn compile_node(plan: &Plan, node: &Node) -> NodeC {
+    let (lift, ground) = match node.lift {
+        Lift::None => (0.0, false),
+        Lift::Baked(y) => (y, false),
+        Lift::Ground { x, z } => match &plan.terrain {
+            Some(t) => (t.fbm.height(plan.hash, x, z).0, true),
+            None => (0.0, true),
+        },
+    };
+    let shape = match &node.shape {
+        Shape::Prim(prim) => ShapeC::Prim(PrimC::new(prim)),
+        Shape::Blend { k, parts } => ShapeC::Blend {
+            inv_k: 1.0 / k,
+            k_quarter: 0.25 * k,
+            parts: parts.iter().map(PrimC::new).collect(),
+        },
+        Shape::Displaced { prim, amp, freq } => ShapeC::Displaced {
+            prim: PrimC::new(prim),
+            amp: *amp,
+            freq: *freq,
+            scale: 1.0 / (1.0 + amp * freq * VALUE_NOISE3_SLOPE),
+        },
+        Shape::Rows {
+            part,
+            spacing,
+            count,
+            nearest,
+        } => ShapeC::Rows {
+            part: PrimC::new(part),
+            spacing: *spacing,
+            inv_spacing: 1.0 / spacing,
+            count: (*count).max(1),
+            nearest: *nearest,
+        },
+        Shape::Mandelbulb {
+            centre,
+            iterations,
+            bailout,
+        } => ShapeC::Mandelbulb {
+            centre: *centre,
+            iterations: *iterations,
+            bailout: *bailout,
+            skip: (*bailout >= 4.0).then_some((BULB_RADIUS, 0.5)),
+        },
+    };
+    NodeC {
+        material: node.material as i32,
+        lift,
+        ground,
+        guard: node.guard,
+        shape,
+    }
+}

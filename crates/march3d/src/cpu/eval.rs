@@ -1,0 +1,326 @@
+//! The scene distance `map(p) -> (d, material)` of a plan for a packet of points, from the
+//! per-frame constants (`super::constants`): every node's guard, lift, blend, displacement
+//! and row repetition evaluated over lanes, with material tracking by masks.
+
+use super::constants::{NodeC, PrimC, SceneConstants, ShapeC};
+use super::lanes::V3;
+use super::prims::{mandelbulb, prim_distance};
+use crate::noise::noise3;
+use crate::plan3d::{EARLY_OUT_MARGIN, SKY};
+use crate::simd::{Pack, PackKernel};
+
+/// The material lane value of the background (`SKY` as `i32`).
+pub(crate) const SKY_I: i32 = SKY as i32;
+
+/// How much work the evaluations did: SDF evaluations and march steps (exact per ray on
+/// one-lane backends; packet-level counts elsewhere).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Tally {
+    pub sdf: u64,
+    pub steps: u64,
+}
+
+/// The scene distance and (when `mats`) the nearest material at `q`. `active` marks the
+/// lanes whose result matters: work that no active lane needs is skipped.
+///
+/// Every caller (the march, normals, shadows, occlusion) goes through one out-of-line copy
+/// of the scene per backend, compiled with the backend's instruction set by `Pack::call`:
+/// inlined at each call site, the whole scene evaluator was copied a dozen times per
+/// backend, which made the crate take many minutes to compile for no speed gained (a
+/// scene evaluation costs far more than the call).
+#[inline(always)]
+pub(crate) fn map<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    q: V3<P>,
+    active: P::M,
+    mats: bool,
+    tally: &mut Tally,
+) -> (P::F, P::I) {
+    let mut io = MapIo::default();
+    p.store(q.x, &mut io.x);
+    p.store(q.y, &mut io.y);
+    p.store(q.z, &mut io.z);
+    p.store(p.select(active, p.splat(1.0), p.splat(0.0)), &mut io.active);
+    p.call(MapCall {
+        s,
+        io: &mut io,
+        mats,
+        tally,
+    });
+    (p.load(&io.d), p.load_i(&io.m))
+}
+
+/// The lanes of one [`map`] call, in memory (a kernel is generic over the backend, so its
+/// inputs cannot be one backend's registers).
+struct MapIo {
+    x: [f32; MAP_LANES],
+    y: [f32; MAP_LANES],
+    z: [f32; MAP_LANES],
+    active: [f32; MAP_LANES],
+    d: [f32; MAP_LANES],
+    m: [i32; MAP_LANES],
+}
+
+/// The widest packet any backend has.
+const MAP_LANES: usize = 16;
+
+impl Default for MapIo {
+    fn default() -> MapIo {
+        MapIo {
+            x: [0.0; MAP_LANES],
+            y: [0.0; MAP_LANES],
+            z: [0.0; MAP_LANES],
+            active: [0.0; MAP_LANES],
+            d: [0.0; MAP_LANES],
+            m: [0; MAP_LANES],
+        }
+    }
+}
+
+/// [`map_inline`] as a kernel, so that `Pack::call` compiles it once per backend.
+struct MapCall<'a> {
+    s: &'a SceneConstants,
+    io: &'a mut MapIo,
+    mats: bool,
+    tally: &'a mut Tally,
+}
+
+impl PackKernel for MapCall<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<P: Pack>(self, p: P) {
+        let q = V3 {
+            x: p.load(&self.io.x),
+            y: p.load(&self.io.y),
+            z: p.load(&self.io.z),
+        };
+        let active = p.gt(p.load(&self.io.active), p.splat(0.5));
+        let (d, m) = map_inline(p, self.s, q, active, self.mats, self.tally);
+        p.store(d, &mut self.io.d);
+        p.store_i(m, &mut self.io.m);
+    }
+}
+
+/// The body of [`map`].
+#[inline(always)]
+fn map_inline<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    q: V3<P>,
+    active: P::M,
+    mats: bool,
+    tally: &mut Tally,
+) -> (P::F, P::I) {
+    let mut d = p.splat(f32::INFINITY);
+    let mut m = p.splat_i(SKY_I);
+    if let Some(t) = &s.terrain {
+        tally.sdf += 1;
+        let h = t.fbm.height_only(p, q.x, q.z);
+        d = p.mul(p.sub(q.y, h), p.splat(t.step_scale));
+        m = p.splat_i(t.material);
+    }
+    let mut above = p.none();
+    let (mut de, mut me) = (d, m);
+    if let Some(top) = s.early_out {
+        let dtop = p.sub(q.y, p.splat(top));
+        above = p.gt(q.y, p.splat(top + EARLY_OUT_MARGIN));
+        let sky = p.lt(dtop, d);
+        de = p.min(dtop, d);
+        me = p.select_i(sky, p.splat_i(SKY_I), m);
+        if !p.any(p.and_not(active, above)) {
+            return (de, me);
+        }
+    }
+    for node in &s.nodes {
+        let dn = node_distance(p, s, node, q, active, tally);
+        if mats {
+            m = p.select_i(p.lt(dn, d), p.splat_i(node.material), m);
+        }
+        d = p.min(dn, d);
+    }
+    if s.early_out.is_some() {
+        d = p.select(above, de, d);
+        m = p.select_i(above, me, m);
+    }
+    (d, m)
+}
+
+/// One node's distance at `q` (world space).
+#[inline(always)]
+fn node_distance<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    node: &NodeC,
+    q: V3<P>,
+    active: P::M,
+    tally: &mut Tally,
+) -> P::F {
+    if node.ground {
+        tally.sdf += 1;
+    }
+    let q = if node.lift == 0.0 {
+        q
+    } else {
+        V3 {
+            y: p.sub(q.y, p.splat(node.lift)),
+            ..q
+        }
+    };
+    match &node.guard {
+        None => shape_distance(p, s, &node.shape, q, active, tally),
+        Some(g) => {
+            let b = q.sub_c(p, g.centre).abs(p).sub_c(p, g.half).max0(p).len(p);
+            let far = p.gt(b, p.splat(g.margin));
+            let near = p.and_not(active, far);
+            if !p.any(near) {
+                return b;
+            }
+            let d = shape_distance(p, s, &node.shape, q, near, tally);
+            p.select(far, b, d)
+        }
+    }
+}
+
+#[inline(always)]
+fn shape_distance<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    shape: &ShapeC,
+    q: V3<P>,
+    active: P::M,
+    tally: &mut Tally,
+) -> P::F {
+    match shape {
+        ShapeC::Prim(prim) => {
+            tally.sdf += 1;
+            prim_distance(p, prim, q, active)
+        }
+        ShapeC::Blend {
+            inv_k,
+            k_quarter,
+            parts,
+        } => {
+            tally.sdf += parts.len() as u64;
+            let mut d = p.splat(f32::INFINITY);
+            for (i, part) in parts.iter().enumerate() {
+                let dp = prim_distance(p, part, q, active);
+                d = if i == 0 {
+                    dp
+                } else {
+                    smin(p, d, dp, *inv_k, *k_quarter)
+                };
+            }
+            d
+        }
+        ShapeC::Displaced {
+            prim,
+            amp,
+            freq,
+            scale,
+        } => {
+            tally.sdf += 1;
+            let d = prim_distance(p, prim, q, active);
+            let f = p.splat(*freq);
+            let n = noise3(p, s.hash, p.mul(q.x, f), p.mul(q.y, f), p.mul(q.z, f));
+            let n = p.sub(n, p.splat(0.5));
+            p.mul(p.fma(p.splat(*amp), n, d), p.splat(*scale))
+        }
+        ShapeC::Rows {
+            part,
+            spacing,
+            inv_spacing,
+            count,
+            nearest,
+        } => rows_distance(
+            p,
+            part,
+            (*spacing, *inv_spacing, *count, *nearest),
+            q,
+            active,
+            tally,
+        ),
+        ShapeC::Mandelbulb {
+            centre,
+            iterations,
+            bailout,
+            skip,
+        } => {
+            let c = q.sub_c(p, *centre);
+            if let Some((radius, margin)) = skip {
+                // The bounding sphere first: one SDF evaluation.
+                tally.sdf += 1;
+                let b = p.sub(c.len(p), p.splat(*radius));
+                let far = p.gt(b, p.splat(*margin));
+                let near = p.and_not(active, far);
+                if !p.any(near) {
+                    return b;
+                }
+                tally.sdf += 1;
+                let d = mandelbulb(p, c, *iterations, *bailout, near);
+                return p.select(far, b, d);
+            }
+            tally.sdf += 1;
+            mandelbulb(p, c, *iterations, *bailout, active)
+        }
+    }
+}
+
+/// The polynomial smooth minimum `min(a, b) - h*h*k/4`, `h = max(k - |a - b|, 0) / k`.
+#[inline(always)]
+fn smin<P: Pack>(p: P, a: P::F, b: P::F, inv_k: f32, k_quarter: f32) -> P::F {
+    let h = p.mul(
+        p.max(
+            p.sub(p.splat(1.0 / inv_k), p.abs(p.sub(a, b))),
+            p.splat(0.0),
+        ),
+        p.splat(inv_k),
+    );
+    p.fnma(p.mul(h, h), p.splat(k_quarter), p.min(a, b))
+}
+
+/// Row repetition along +z: the nearest row and its neighbour, or every row.
+#[inline(always)]
+fn rows_distance<P: Pack>(
+    p: P,
+    part: &PrimC,
+    (spacing, inv_spacing, count, nearest): (f32, f32, u32, bool),
+    q: V3<P>,
+    active: P::M,
+    tally: &mut Tally,
+) -> P::F {
+    let row_at = |i: P::F| V3 {
+        z: p.fnma(i, p.splat(spacing), q.z),
+        ..q
+    };
+    if !nearest {
+        tally.sdf += count as u64;
+        let mut d = p.splat(f32::INFINITY);
+        for i in 0..count {
+            d = p.min(d, prim_distance(p, part, row_at(p.splat(i as f32)), active));
+        }
+        return d;
+    }
+    let last = p.splat((count - 1) as f32);
+    let z = p.sub(q.z, p.splat(part.centre.z));
+    let c = p.max(
+        p.splat(0.0),
+        p.min(last, p.round(p.mul(z, p.splat(inv_spacing)))),
+    );
+    tally.sdf += 1;
+    let d = prim_distance(p, part, row_at(c), active);
+    // The neighbour on the side of z: c + sign(z - c * spacing), when in range.
+    let off = p.fnma(c, p.splat(spacing), z);
+    let up = p.gt(off, p.splat(0.0));
+    let down = p.lt(off, p.splat(0.0));
+    let n = p.add(c, p.select(up, p.splat(1.0), p.splat(-1.0)));
+    let valid = p.and(p.or(up, down), p.and(p.ge(n, p.splat(0.0)), p.le(n, last)));
+    let need = p.and(active, valid);
+    if !p.any(need) {
+        return d;
+    }
+    tally.sdf += 1;
+    let d2 = prim_distance(p, part, row_at(n), need);
+    p.select(valid, p.min(d, d2), d)
+}

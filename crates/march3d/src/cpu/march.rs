@@ -1,0 +1,282 @@
+//! Sphere tracing of a packet of rays with active-lane masks (plain and over-relaxed),
+//! soft shadows, and surface normals, as the plan's "Marching" and "Normals" sections
+//! define them.
+
+use super::constants::SceneConstants;
+use super::eval::{Tally, map};
+use super::lanes::V3;
+use crate::plan3d::March;
+use crate::simd::Pack;
+
+/// Per-frame march constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MarchC {
+    pub m: March,
+    /// `escape^2` (the escape test compares squared lengths).
+    pub escape2: f32,
+}
+
+impl MarchC {
+    pub(super) fn new(m: &March) -> MarchC {
+        MarchC {
+            m: *m,
+            escape2: m.escape * m.escape,
+        }
+    }
+}
+
+/// What a packet's march found.
+pub(crate) struct Hit<P: Pack> {
+    /// Lanes that hit.
+    pub hit: P::M,
+    /// Distance along the ray.
+    pub t: P::F,
+    /// Material of the hit (`SKY` elsewhere).
+    pub m: P::I,
+    /// The scene distance at the hit point.
+    pub d: P::F,
+}
+
+/// Marches the lanes of `live` from `o` along unit `dir`.
+#[inline(always)]
+pub(crate) fn march<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    mc: &MarchC,
+    o: V3<P>,
+    dir: V3<P>,
+    live: P::M,
+    tally: &mut Tally,
+) -> Hit<P> {
+    let mut h = if mc.m.relax > 1.0 {
+        march_relaxed(p, s, mc, o, dir, live, tally)
+    } else {
+        march_plain(p, s, mc, o, dir, live, tally)
+    };
+    if !s.material_ids && p.any(h.hit) {
+        // The march kept distances only: one more full evaluation finds the materials.
+        let q = dir.mul_add(p, h.t, o);
+        let (_, m) = map(p, s, q, h.hit, true, tally);
+        h.m = p.select_i(h.hit, m, h.m);
+    }
+    h
+}
+
+#[inline(always)]
+fn march_plain<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    mc: &MarchC,
+    o: V3<P>,
+    dir: V3<P>,
+    live: P::M,
+    tally: &mut Tally,
+) -> Hit<P> {
+    let mut t = p.splat(0.0);
+    let mut active = live;
+    let mut hit = p.none();
+    let mut m = p.splat_i(super::eval::SKY_I);
+    let mut dh = p.splat(0.0);
+    let (thr, per_t) = (p.splat(mc.m.hit), p.splat(mc.m.hit_per_t));
+    let (esc2, far, sf) = (
+        p.splat(mc.escape2),
+        p.splat(mc.m.far),
+        p.splat(mc.m.step_factor),
+    );
+    for _ in 0..mc.m.max_steps {
+        if !p.any(active) {
+            break;
+        }
+        let q = dir.mul_add(p, t, o);
+        let (d, dm) = map(p, s, q, active, s.material_ids, tally);
+        tally.steps += p.count(active) as u64;
+        let new = p.and(active, p.lt(d, p.fma(per_t, t, thr)));
+        hit = p.or(hit, new);
+        m = p.select_i(new, dm, m);
+        dh = p.select(new, d, dh);
+        let out = p.or(p.gt(q.len2(p), esc2), p.gt(t, far));
+        active = p.and_not(p.and_not(active, new), out);
+        t = p.select(active, p.fma(d, sf, t), t);
+    }
+    Hit { hit, t, m, d: dh }
+}
+
+/// Over-relaxed sphere tracing: steps of `relax * d` while the unbounding spheres of
+/// consecutive points overlap; when they do not, back to the previous point and plain
+/// steps from there on (per lane).
+#[inline(always)]
+fn march_relaxed<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    mc: &MarchC,
+    o: V3<P>,
+    dir: V3<P>,
+    live: P::M,
+    tally: &mut Tally,
+) -> Hit<P> {
+    let zero = p.splat(0.0);
+    let one = p.splat(1.0);
+    let mut t = zero;
+    let mut omega = p.splat(mc.m.relax);
+    let (mut t_prev, mut d_prev, mut step) = (zero, zero, zero);
+    let mut active = live;
+    let mut hit = p.none();
+    let mut m = p.splat_i(super::eval::SKY_I);
+    let mut dh = zero;
+    let (thr, per_t) = (p.splat(mc.m.hit), p.splat(mc.m.hit_per_t));
+    let (esc2, far, sf) = (
+        p.splat(mc.escape2),
+        p.splat(mc.m.far),
+        p.splat(mc.m.step_factor),
+    );
+    for k in 0..mc.m.max_steps {
+        if !p.any(active) {
+            break;
+        }
+        let q = dir.mul_add(p, t, o);
+        let (d, dm) = map(p, s, q, active, s.material_ids, tally);
+        tally.steps += p.count(active) as u64;
+        let relaxing = p.gt(omega, one);
+        let fail = if k == 0 {
+            p.none()
+        } else {
+            p.and(p.and(active, relaxing), p.lt(p.add(p.abs(d), d_prev), step))
+        };
+        let ok = p.and_not(active, fail);
+        let new = p.and(ok, p.lt(d, p.fma(per_t, t, thr)));
+        hit = p.or(hit, new);
+        m = p.select_i(new, dm, m);
+        dh = p.select(new, d, dh);
+        let out = p.and(ok, p.or(p.gt(q.len2(p), esc2), p.gt(t, far)));
+        active = p.and_not(p.and_not(active, new), out);
+        // Failed lanes: the previous point plus a plain step, relaxation off.
+        let t_back = p.fma(d_prev, sf, t_prev);
+        omega = p.select(fail, one, omega);
+        let adv = p.and_not(active, fail);
+        t_prev = p.select(adv, t, t_prev);
+        d_prev = p.select(adv, d, d_prev);
+        step = p.select(adv, p.mul(p.mul(omega, d), sf), step);
+        t = p.select(fail, t_back, p.select(adv, p.add(t, step), t));
+    }
+    Hit { hit, t, m, d: dh }
+}
+
+/// The soft shadow from `pos` (normal `n`) towards unit `l`, up to `limit`: 0 blocked, 1
+/// lit, in between in the penumbra (`min(k h / s)`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn soft_shadow<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    mc: &MarchC,
+    (pos, n, l): (V3<P>, V3<P>, V3<P>),
+    limit: P::F,
+    k: f32,
+    steps: u32,
+    live: P::M,
+    tally: &mut Tally,
+) -> P::F {
+    let q = n.mul_add(p, p.splat(mc.m.ray_offset), pos);
+    let mut sv = p.splat(mc.m.ray_offset);
+    let mut res = p.splat(1.0);
+    let mut active = live;
+    let (thr, kv, esc2) = (p.splat(mc.m.hit), p.splat(k), p.splat(mc.escape2));
+    for _ in 0..steps {
+        if !p.any(active) {
+            break;
+        }
+        let (h, _) = map(p, s, l.mul_add(p, sv, q), active, false, tally);
+        tally.steps += p.count(active) as u64;
+        let blocked = p.and(active, p.lt(h, thr));
+        res = p.select(blocked, p.splat(0.0), res);
+        active = p.and_not(active, blocked);
+        res = p.select(active, p.min(res, p.div(p.mul(kv, h), sv)), res);
+        sv = p.select(active, p.add(sv, h), sv);
+        let done = p.or(p.gt(sv, limit), p.gt(l.mul_add(p, sv, q).len2(p), esc2));
+        active = p.and_not(active, done);
+    }
+    res
+}
+
+/// Surface normals of the hits in `live` at `q` (material `m`, scene distance `d` there):
+/// the terrain's analytic or central-difference normal on terrain, forward differences
+/// elsewhere.
+#[inline(always)]
+pub(crate) fn normal<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    mc: &MarchC,
+    (q, m, d): (V3<P>, P::I, P::F),
+    live: P::M,
+    tally: &mut Tally,
+) -> V3<P> {
+    let e = mc.m.normal_eps;
+    let ter = match &s.terrain {
+        Some(t) => p.and(live, p.eq_i(m, p.splat_i(t.material))),
+        None => p.none(),
+    };
+    let obj = p.and_not(live, ter);
+    let mut n = V3::splat(p, glam::Vec3::Y);
+    if p.any(obj) {
+        let mut g = [d; 3];
+        for (axis, gi) in g.iter_mut().enumerate() {
+            let dq = shifted(p, q, axis, e);
+            *gi = p.sub(map(p, s, dq, obj, false, tally).0, d);
+        }
+        let f = V3 {
+            x: g[0],
+            y: g[1],
+            z: g[2],
+        }
+        .normalize(p);
+        n = V3::select(p, obj, f, n);
+    }
+    if let Some(t) = &s.terrain
+        && p.any(ter)
+    {
+        let tn = if t.analytic_normal {
+            tally.sdf += 1;
+            let (_, gx, gz) = t.fbm.height(p, q.x, q.z);
+            V3 {
+                x: p.neg(gx),
+                y: p.splat(1.0),
+                z: p.neg(gz),
+            }
+            .normalize(p)
+        } else {
+            let mut g = [d; 3];
+            for (axis, gi) in g.iter_mut().enumerate() {
+                let a = map(p, s, shifted(p, q, axis, e), ter, false, tally).0;
+                let b = map(p, s, shifted(p, q, axis, -e), ter, false, tally).0;
+                *gi = p.sub(a, b);
+            }
+            V3 {
+                x: g[0],
+                y: g[1],
+                z: g[2],
+            }
+            .normalize(p)
+        };
+        n = V3::select(p, ter, tn, n);
+    }
+    n
+}
+
+#[inline(always)]
+fn shifted<P: Pack>(p: P, q: V3<P>, axis: usize, e: f32) -> V3<P> {
+    let e = p.splat(e);
+    match axis {
+        0 => V3 {
+            x: p.add(q.x, e),
+            ..q
+        },
+        1 => V3 {
+            y: p.add(q.y, e),
+            ..q
+        },
+        _ => V3 {
+            z: p.add(q.z, e),
+            ..q
+        },
+    }
+}

@@ -1,0 +1,319 @@
+//! The distances of the tracer's primitives over lanes (spheres, boxes, cones, tori and
+//! the rest of the plan's kinds), the power-8 Mandelbulb, and the ray-sphere test of the
+//! early-out.
+
+use glam::Vec2;
+
+use super::constants::{PrimC, PrimK};
+use super::lanes::V3;
+use crate::math;
+use crate::plan3d::Sphere;
+use crate::simd::Pack;
+
+/// The distance of a primitive placed at `prim.centre` with its rotation.
+#[inline(always)]
+pub(crate) fn prim_distance<P: Pack>(p: P, prim: &PrimC, q: V3<P>, active: P::M) -> P::F {
+    let mut l = q.sub_c(p, prim.centre);
+    if let Some(r) = &prim.rot {
+        l = l.rotate(p, r);
+    }
+    let zero = p.splat(0.0);
+    match prim.kind {
+        PrimK::Sphere { r } => p.sub(l.len(p), p.splat(r)),
+        PrimK::Box { half } => {
+            let b = l.abs(p).sub_c(p, half);
+            p.add(b.max0(p).len(p), p.min(b.max_elem(p), zero))
+        }
+        PrimK::RoundBox { inner, r } => {
+            let b = l.abs(p).sub_c(p, inner);
+            p.sub(
+                p.add(b.max0(p).len(p), p.min(b.max_elem(p), zero)),
+                p.splat(r),
+            )
+        }
+        PrimK::Capsule { a, ba, inv_baba, r } => {
+            let pa = l.sub_c(p, a);
+            let h = p.mul(pa.dot_c(p, ba), p.splat(inv_baba));
+            let h = p.max(zero, p.min(p.splat(1.0), h));
+            let v = V3::splat(p, ba).scale(p, h);
+            p.sub(pa.sub(p, v).len(p), p.splat(r))
+        }
+        PrimK::Torus { major, minor } => {
+            let rxz = p.sqrt(p.fma(l.x, l.x, p.mul(l.z, l.z)));
+            let a = p.sub(rxz, p.splat(major));
+            p.sub(p.sqrt(p.fma(a, a, p.mul(l.y, l.y))), p.splat(minor))
+        }
+        PrimK::Cylinder { r, h } => {
+            let rxz = p.sqrt(p.fma(l.x, l.x, p.mul(l.z, l.z)));
+            let dx = p.sub(rxz, p.splat(r));
+            let dy = p.sub(p.abs(l.y), p.splat(h));
+            let (ox, oy) = (p.max(dx, zero), p.max(dy, zero));
+            p.add(
+                p.min(p.max(dx, dy), zero),
+                p.sqrt(p.fma(ox, ox, p.mul(oy, oy))),
+            )
+        }
+        PrimK::CappedCone {
+            h,
+            r1,
+            r2,
+            k2,
+            inv_k2k2,
+        } => capped_cone(p, l, h, r1, r2, k2, inv_k2k2),
+        PrimK::Octahedron { s } => octahedron(p, l, s, active),
+        PrimK::Ellipsoid { inv_r, inv_r2 } => {
+            let k0 = V3 {
+                x: p.mul(l.x, p.splat(inv_r.x)),
+                y: p.mul(l.y, p.splat(inv_r.y)),
+                z: p.mul(l.z, p.splat(inv_r.z)),
+            }
+            .len(p);
+            let k1 = V3 {
+                x: p.mul(l.x, p.splat(inv_r2.x)),
+                y: p.mul(l.y, p.splat(inv_r2.y)),
+                z: p.mul(l.z, p.splat(inv_r2.z)),
+            }
+            .len(p);
+            p.div(p.mul(k0, p.sub(k0, p.splat(1.0))), k1)
+        }
+        PrimK::PlaneY { offset } => p.sub(l.y, p.splat(offset)),
+        PrimK::Plane { normal, offset } => p.sub(l.dot_c(p, normal), p.splat(offset)),
+    }
+}
+
+#[inline(always)]
+fn capped_cone<P: Pack>(p: P, l: V3<P>, h: f32, r1: f32, r2: f32, k2: Vec2, inv_k2k2: f32) -> P::F {
+    let zero = p.splat(0.0);
+    let qx = p.sqrt(p.fma(l.x, l.x, p.mul(l.z, l.z)));
+    let qy = l.y;
+    let rim = p.select(p.lt(qy, zero), p.splat(r1), p.splat(r2));
+    let cax = p.sub(qx, p.min(qx, rim));
+    let cay = p.sub(p.abs(qy), p.splat(h));
+    // k1 - q = (r2 - qx, h - qy).
+    let (kqx, kqy) = (p.sub(p.splat(r2), qx), p.sub(p.splat(h), qy));
+    let t = p.mul(
+        p.fma(kqx, p.splat(k2.x), p.mul(kqy, p.splat(k2.y))),
+        p.splat(inv_k2k2),
+    );
+    let t = p.max(zero, p.min(p.splat(1.0), t));
+    let cbx = p.fma(p.splat(k2.x), t, p.neg(kqx));
+    let cby = p.fma(p.splat(k2.y), t, p.neg(kqy));
+    let inside = p.and(p.lt(cbx, zero), p.lt(cay, zero));
+    let dd = p.min(
+        p.fma(cax, cax, p.mul(cay, cay)),
+        p.fma(cbx, cbx, p.mul(cby, cby)),
+    );
+    let d = p.sqrt(dd);
+    p.select(inside, p.neg(d), d)
+}
+
+/// The exact octahedron; the cheap plane bound `m / sqrt(3)` when no active lane lies in
+/// one of the corner regions that need the full formula.
+#[inline(always)]
+fn octahedron<P: Pack>(p: P, l: V3<P>, s: f32, active: P::M) -> P::F {
+    let a = l.abs(p);
+    let m = p.sub(p.add(a.x, p.add(a.y, a.z)), p.splat(s));
+    let plane = p.mul(m, p.splat(0.577_350_27));
+    let three = p.splat(3.0);
+    let c1 = p.lt(p.mul(three, a.x), m);
+    let c2 = p.lt(p.mul(three, a.y), m);
+    let c3 = p.lt(p.mul(three, a.z), m);
+    let corner = p.or(c1, p.or(c2, c3));
+    if !p.any(p.and(active, corner)) {
+        return plane;
+    }
+    // q = p, p.yzx or p.zxy for the first region that holds.
+    let qx = p.select(c1, a.x, p.select(c2, a.y, a.z));
+    let qy = p.select(c1, a.y, p.select(c2, a.z, a.x));
+    let qz = p.select(c1, a.z, p.select(c2, a.x, a.y));
+    let sv = p.splat(s);
+    let k = p.mul(p.splat(0.5), p.add(p.sub(qz, qy), sv));
+    let k = p.max(p.splat(0.0), p.min(sv, k));
+    let d = V3 {
+        x: qx,
+        y: p.add(p.sub(qy, sv), k),
+        z: p.sub(qz, k),
+    }
+    .len(p);
+    p.select(corner, d, plane)
+}
+
+/// The power-8 Mandelbulb's distance estimate at `c = p - centre`.
+#[inline(always)]
+pub(crate) fn mandelbulb<P: Pack>(
+    p: P,
+    c: V3<P>,
+    iterations: u32,
+    bailout: f32,
+    active: P::M,
+) -> P::F {
+    let mut w = c;
+    let mut m = w.len2(p);
+    let mut dz = p.splat(1.0);
+    let mut live = active;
+    let bail = p.splat(bailout);
+    for _ in 0..iterations {
+        // dz = 8 m^3.5 dz + 1.
+        let m3 = p.mul(p.mul(m, m), m);
+        let k = p.mul(p.mul(p.splat(8.0), m3), p.sqrt(m));
+        let ndz = p.fma(k, dz, p.splat(1.0));
+        let nw = bulb8(p, w).add(p, c);
+        let nm = nw.len2(p);
+        dz = p.select(live, ndz, dz);
+        w = V3::select(p, live, nw, w);
+        m = p.select(live, nm, m);
+        live = p.and_not(live, p.gt(nm, bail));
+        if !p.any(live) {
+            break;
+        }
+    }
+    let num = p.mul(p.mul(p.splat(0.25), math::log(p, m)), p.sqrt(m));
+    p.div(num, dz)
+}
+
+/// `w^8` in the spherical power-8 form `r^8 (sin b sin a, cos b, sin b cos a)`, `b = 8
+/// acos(w.y / r)`, `a = 8 atan2(w.x, w.z)`, without trigonometry: with `rho = |w.xz|`, `r^8
+/// (cos b, sin b) = (y + i rho)^8` and `(cos a, sin a) = ((z + i x) / rho)^8`, both by
+/// three complex squarings.
+#[inline(always)]
+pub(crate) fn bulb8<P: Pack>(p: P, w: V3<P>) -> V3<P> {
+    let two = p.splat(2.0);
+    let rho2 = p.fma(w.x, w.x, p.mul(w.z, w.z));
+    // rho = 0 (on the axis): a = 0 by atan2(0, 0); any unit (zn, xn) gives sin b = 0.
+    let rho = p.sqrt(rho2);
+    let inv = p.div(p.splat(1.0), p.max(rho, p.splat(1e-30)));
+    let (xn, zn) = (p.mul(w.x, inv), p.mul(w.z, inv));
+    // (zn + i xn)^8.
+    let (mut ca, mut sa) = (p.fnma(xn, xn, p.mul(zn, zn)), p.mul(two, p.mul(xn, zn)));
+    for _ in 0..2 {
+        let (c2, s2) = (p.fnma(sa, sa, p.mul(ca, ca)), p.mul(two, p.mul(sa, ca)));
+        (ca, sa) = (c2, s2);
+    }
+    // (y + i rho)^8.
+    let (mut cb, mut sb) = (p.sub(p.mul(w.y, w.y), rho2), p.mul(two, p.mul(w.y, rho)));
+    for _ in 0..2 {
+        let (c2, s2) = (p.fnma(sb, sb, p.mul(cb, cb)), p.mul(two, p.mul(sb, cb)));
+        (cb, sb) = (c2, s2);
+    }
+    V3 {
+        x: p.mul(sb, sa),
+        y: cb,
+        z: p.mul(sb, ca),
+    }
+}
+
+/// Whether `o + s * dir` for some `s > 0` meets the sphere (the terrain-and-bounds shadow's
+/// ray test): `oc = centre - o, b = dot(oc, dir), c = dot(oc, oc) - r^2`, `b > 0 && b*b > c`.
+#[inline(always)]
+pub(crate) fn ray_meets_sphere<P: Pack>(p: P, o: V3<P>, dir: V3<P>, s: &Sphere) -> P::M {
+    let oc = V3::splat(p, s.centre).sub(p, o);
+    let b = oc.dot(p, dir);
+    let c = p.sub(oc.len2(p), p.splat(s.radius * s.radius));
+    p.and(p.gt(b, p.splat(0.0)), p.gt(p.mul(b, b), c))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cpu::constants::BULB_RADIUS;
+    use crate::simd::Scalar;
+
+    /// The trigonometric form of the power-8 step, in f64.
+    fn bulb8_trig(w: [f64; 3]) -> [f64; 3] {
+        let r = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+        let b = 8.0 * (w[1] / r).acos();
+        let a = 8.0 * w[0].atan2(w[2]);
+        let r8 = r.powi(8);
+        [r8 * b.sin() * a.sin(), r8 * b.cos(), r8 * b.sin() * a.cos()]
+    }
+
+    /// The trig-free form of [`bulb8`] (the same complex squarings), in f64.
+    fn bulb8_f64(w: [f64; 3]) -> [f64; 3] {
+        let rho2 = w[0] * w[0] + w[2] * w[2];
+        let rho = rho2.sqrt();
+        // On the axis any unit direction will do, as in the lane version.
+        let (xn, zn) = (w[0] / rho.max(1e-300), w[2] / rho.max(1e-300));
+        let sq = |(c, s): (f64, f64)| (c * c - s * s, 2.0 * s * c);
+        let (ca, sa) = sq(sq((zn * zn - xn * xn, 2.0 * xn * zn)));
+        let (cb, sb) = sq(sq((w[1] * w[1] - rho2, 2.0 * w[1] * rho)));
+        [sb * sa, cb, sb * ca]
+    }
+
+    fn points() -> impl Iterator<Item = [f64; 3]> {
+        (0..2000).map(|i| {
+            let f = i as f64;
+            [
+                (f * 0.731).sin() * 1.3,
+                (f * 0.377).cos() * 1.1,
+                (f * 1.913).sin() * 0.9,
+            ]
+        })
+    }
+
+    #[test]
+    fn trig_free_bulb_step_equals_the_trigonometric_form() {
+        for w in points() {
+            let (a, b) = (bulb8_trig(w), bulb8_f64(w));
+            let r8 = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).powi(4);
+            for k in 0..3 {
+                assert!(
+                    (a[k] - b[k]).abs() <= 1e-9 * r8.max(1.0),
+                    "{w:?}: {a:?} {b:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn lane_bulb_step_follows_the_f64_form() {
+        for w in points() {
+            let b = bulb8_f64(w);
+            let v = bulb8(
+                Scalar,
+                V3 {
+                    x: w[0] as f32,
+                    y: w[1] as f32,
+                    z: w[2] as f32,
+                },
+            );
+            let r8 = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).powi(4);
+            for (got, want) in [v.x, v.y, v.z].into_iter().zip(b) {
+                assert!(
+                    (got as f64 - want).abs() <= 1e-5 * r8.max(1.0),
+                    "{w:?}: {got} vs {want}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn bulb_step_on_the_axis_is_finite() {
+        let v = bulb8(
+            Scalar,
+            V3 {
+                x: 0.0,
+                y: 0.5,
+                z: 0.0,
+            },
+        );
+        assert_eq!((v.x, v.y, v.z), (0.0, 0.5f32.powi(8), 0.0));
+    }
+
+    #[test]
+    fn bulb_distance_is_positive_outside_the_skip_radius() {
+        // The skip sphere must contain the whole surface, for every iteration count.
+        for iterations in 1..=8 {
+            for (i, w) in points().enumerate() {
+                let n = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+                let r = BULB_RADIUS as f64 * (1.0 + (i % 7) as f64 * 0.05);
+                let c = V3 {
+                    x: (w[0] / n * r) as f32,
+                    y: (w[1] / n * r) as f32,
+                    z: (w[2] / n * r) as f32,
+                };
+                let d = mandelbulb(Scalar, c, iterations, 256.0, true);
+                assert!(d > 0.01, "{iterations} iterations at {r}: {d}");
+            }
+        }
+    }
+}

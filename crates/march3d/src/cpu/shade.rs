@@ -1,0 +1,407 @@
+//! Colours of a packet of camera rays: the reference paper's shading (point lights, Phong,
+//! soft shadows, fog, mirror bounces with per-lane weights) and the outdoor world shading
+//! (sun, sky, ambient occlusion, both shadow modes, fog), then gamma.
+
+use glam::Vec3;
+
+use super::constants::SceneConstants;
+use super::eval::{Tally, map};
+use super::lanes::V3;
+use super::march::{MarchC, march, normal, soft_shadow};
+use super::prims::ray_meets_sphere;
+use crate::math;
+use crate::plan3d::{
+    AoMode, Camera3d, Material, PaperShading, Plan, Shading, ShadowMode, Sphere, WorldShading,
+};
+use crate::simd::Pack;
+
+/// The widest packet any backend uses.
+pub(crate) const MAX_WIDTH: usize = 16;
+
+/// Everything one frame's kernel reads: compiled once, shared by all threads.
+#[derive(Clone, Debug)]
+pub(crate) struct Frame {
+    pub scene: SceneConstants,
+    pub march: MarchC,
+    pub shading: Shading,
+    pub materials: Vec<Material>,
+    pub bounds: Vec<Sphere>,
+    pub camera: Camera3d,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Frame {
+    /// The frame of a valid plan.
+    pub(super) fn new(plan: &Plan, camera: &Camera3d, width: u32, height: u32) -> Frame {
+        Frame {
+            scene: SceneConstants::new(plan),
+            march: MarchC::new(&plan.march),
+            shading: plan.shading.clone(),
+            materials: plan.materials.clone(),
+            bounds: plan.nodes.iter().map(|n| n.bound).collect(),
+            camera: *camera,
+            width,
+            height,
+        }
+    }
+}
+
+/// Per-lane material colour and reflectivity (zero for the sky and inactive lanes).
+#[inline(always)]
+fn looks<P: Pack>(p: P, f: &Frame, m: P::I, live: P::M) -> (V3<P>, P::F) {
+    let mut ids = [0i32; MAX_WIDTH];
+    p.store_i(m, &mut ids);
+    let live = p.bitmask(live);
+    let mut c = [[0.0f32; MAX_WIDTH]; 4];
+    for (lane, &id) in ids.iter().enumerate().take(P::WIDTH) {
+        if live & (1 << lane) != 0
+            && let Some(mat) = f.materials.get(id as u32 as usize)
+        {
+            c[0][lane] = mat.colour.x;
+            c[1][lane] = mat.colour.y;
+            c[2][lane] = mat.colour.z;
+            c[3][lane] = mat.reflectivity;
+        }
+    }
+    (
+        V3 {
+            x: p.load(&c[0]),
+            y: p.load(&c[1]),
+            z: p.load(&c[2]),
+        },
+        p.load(&c[3]),
+    )
+}
+
+/// The camera rays of pixels `i0 .. i0 + WIDTH` of row `j` (lanes past the image repeat
+/// its last column).
+#[inline(always)]
+pub(crate) fn camera_rays<P: Pack>(p: P, f: &Frame, i0: u32, j: u32) -> V3<P> {
+    let mut xs = [0.0f32; MAX_WIDTH];
+    for (lane, x) in xs.iter_mut().enumerate().take(P::WIDTH) {
+        *x = (i0 + lane as u32).min(f.width - 1) as f32;
+    }
+    let c = &f.camera;
+    let (w, h) = (f.width as f32, f.height as f32);
+    let i = p.load(&xs);
+    // x = (2 (i + 0.5) / W - 1) * aspect * tan, y = (1 - 2 (j + 0.5) / H) * tan.
+    let x = p.mul(
+        p.sub(
+            p.div(p.mul(p.splat(2.0), p.add(i, p.splat(0.5))), p.splat(w)),
+            p.splat(1.0),
+        ),
+        p.splat(w / h * c.tan_half_fov),
+    );
+    let y = (1.0 - 2.0 * (j as f32 + 0.5) / h) * c.tan_half_fov;
+    let base = c.forward + c.up * y;
+    V3::splat(p, c.right)
+        .mul_add(p, x, V3::splat(p, base))
+        .normalize(p)
+}
+
+/// Gamma-encoded colours of the camera rays `dir` (lanes of `live`).
+#[inline(always)]
+pub(crate) fn shade<P: Pack>(p: P, f: &Frame, dir: V3<P>, live: P::M, tally: &mut Tally) -> V3<P> {
+    match &f.shading {
+        Shading::Paper(s) => paper(p, f, s, dir, live, tally),
+        Shading::World(w) => world(p, f, w, dir, live, tally),
+    }
+}
+
+/// `pow(clamp(c, 0, 1), gamma)`, black staying black.
+#[inline(always)]
+fn encode<P: Pack>(p: P, c: P::F, gamma: f32) -> P::F {
+    let x = p.max(p.splat(0.0), p.min(p.splat(1.0), c));
+    p.select(
+        p.le(x, p.splat(0.0)),
+        p.splat(0.0),
+        math::pow(p, x, p.splat(gamma)),
+    )
+}
+
+#[inline(always)]
+fn encode3<P: Pack>(p: P, c: V3<P>, gamma: f32) -> V3<P> {
+    V3 {
+        x: encode(p, c.x, gamma),
+        y: encode(p, c.y, gamma),
+        z: encode(p, c.z, gamma),
+    }
+}
+
+/// The paper's model: the primary hit and up to `bounces` mirror bounces, each weighted by
+/// the product of the reflectivities (times the reflection scale) before it.
+#[inline(always)]
+fn paper<P: Pack>(
+    p: P,
+    f: &Frame,
+    s: &PaperShading,
+    primary: V3<P>,
+    live: P::M,
+    tally: &mut Tally,
+) -> V3<P> {
+    let mc = &f.march;
+    let mut colour = V3::splat(p, Vec3::ZERO);
+    let mut weight = p.splat(1.0);
+    let mut o = V3::splat(p, f.camera.position);
+    let mut dir = primary;
+    let mut live = live;
+    for bounce in 0..=s.bounces {
+        let h = march(p, &f.scene, mc, o, dir, live, tally);
+        live = p.and(live, h.hit);
+        if !p.any(live) {
+            break;
+        }
+        let q = dir.mul_add(p, h.t, o);
+        let n = normal(p, &f.scene, mc, (q, h.m, h.d), live, tally);
+        let (albedo, refl) = looks(p, f, h.m, live);
+        let local = paper_local(p, f, s, (q, n, dir), h.t, albedo, live, tally);
+        let add = V3::select(p, live, local.scale(p, weight), V3::splat(p, Vec3::ZERO));
+        colour = colour.add(p, add);
+        if bounce == s.bounces {
+            break;
+        }
+        weight = p.mul(weight, p.mul(refl, p.splat(s.reflection_scale)));
+        live = p.and(live, p.gt(weight, p.splat(0.0)));
+        if !p.any(live) {
+            break;
+        }
+        o = n.mul_add(p, p.splat(mc.m.ray_offset), q);
+        dir = dir.reflect(p, n);
+    }
+    encode3(p, colour, s.gamma)
+}
+
+/// The local colour of paper-shaded hits (before reflections), fog included.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn paper_local<P: Pack>(
+    p: P,
+    f: &Frame,
+    s: &PaperShading,
+    (q, n, dir): (V3<P>, V3<P>, V3<P>),
+    t: P::F,
+    albedo: V3<P>,
+    live: P::M,
+    tally: &mut Tally,
+) -> V3<P> {
+    let zero = p.splat(0.0);
+    let (mut diffuse, mut specular) = (zero, zero);
+    let ndir = n.dot(p, dir);
+    for light in &s.lights {
+        let to = V3::splat(p, light.position).sub(p, q);
+        let r = to.len(p);
+        let inv = p.div(p.splat(1.0), r);
+        let l = to.scale(p, inv);
+        let intensity = p.mul(p.splat(light.emission), inv);
+        let nl = l.dot(p, n);
+        let diff = p.max(nl, zero);
+        // dot(reflect(-l, n), -dir) = dot(l, dir) - 2 dot(n, l) dot(n, dir).
+        let rv = p.fnma(p.mul(p.splat(2.0), nl), ndir, l.dot(p, dir));
+        let rv = p.max(rv, zero);
+        let spec = math::pow(p, rv, p.splat(s.shininess));
+        // Lanes with neither diffuse nor specular light gain nothing from the shadow ray.
+        let lit = p.and(live, p.or(p.gt(diff, zero), p.gt(rv, zero)));
+        let shadow = match s.shadow_k {
+            Some(k) if p.any(lit) => soft_shadow(
+                p,
+                &f.scene,
+                &f.march,
+                (q, n, l),
+                r,
+                k,
+                f.march.m.max_steps,
+                lit,
+                tally,
+            ),
+            _ => p.splat(1.0),
+        };
+        let si = p.mul(shadow, intensity);
+        diffuse = p.fma(diff, si, diffuse);
+        specular = p.fma(spec, si, specular);
+    }
+    let fog = math::exp(p, p.neg(p.mul(p.splat(s.fog), p.mul(p.mul(t, t), t))));
+    let base = p.add(p.splat(s.ambient), diffuse);
+    let spec = p.mul(p.splat(s.specular), specular);
+    V3 {
+        x: p.fma(albedo.x, base, spec),
+        y: p.fma(albedo.y, base, spec),
+        z: p.fma(albedo.z, base, spec),
+    }
+    .scale(p, fog)
+}
+
+/// `a + (b - a) t` for constant colours.
+#[inline(always)]
+fn mix_c<P: Pack>(p: P, a: Vec3, b: Vec3, t: P::F) -> V3<P> {
+    V3::splat(p, b - a).mul_add(p, t, V3::splat(p, a))
+}
+
+/// The outdoor model.
+#[inline(always)]
+fn world<P: Pack>(
+    p: P,
+    f: &Frame,
+    w: &WorldShading,
+    dir: V3<P>,
+    live: P::M,
+    tally: &mut Tally,
+) -> V3<P> {
+    let zero = p.splat(0.0);
+    let one = p.splat(1.0);
+    let sky = mix_c(p, w.sky[0], w.sky[1], p.max(zero, p.min(one, dir.y)));
+    let o = V3::splat(p, f.camera.position);
+    let h = march(p, &f.scene, &f.march, o, dir, live, tally);
+    let hit = p.and(live, h.hit);
+    if !p.any(hit) {
+        return encode3(p, sky, w.gamma);
+    }
+    let q = dir.mul_add(p, h.t, o);
+    let n = normal(p, &f.scene, &f.march, (q, h.m, h.d), hit, tally);
+    let (albedo, _) = looks(p, f, h.m, hit);
+    let sun = V3::splat(p, w.sun);
+    let diff = p.max(n.dot(p, sun), zero);
+    let lit = p.and(hit, p.gt(diff, zero));
+    let sh = if p.any(lit) {
+        sun_shadow(p, f, w, (q, n), lit, tally)
+    } else {
+        one
+    };
+    let occ = occlusion(p, f, w, (q, n, h.t, h.m), hit, tally);
+    let amb = mix_c(
+        p,
+        w.sky[0],
+        w.sky[1],
+        p.fma(p.splat(0.5), n.y, p.splat(0.5)),
+    );
+    let ds = p.mul(diff, sh);
+    let amb_k = p.mul(p.splat(0.6), occ);
+    let light: V3<P> = V3 {
+        x: p.fma(p.splat(w.sun_colour.x), ds, p.mul(amb.x, amb_k)),
+        y: p.fma(p.splat(w.sun_colour.y), ds, p.mul(amb.y, amb_k)),
+        z: p.fma(p.splat(w.sun_colour.z), ds, p.mul(amb.z, amb_k)),
+    };
+    let c = V3 {
+        x: p.mul(albedo.x, light.x),
+        y: p.mul(albedo.y, light.y),
+        z: p.mul(albedo.z, light.z),
+    };
+    // mix(c, sky0, 1 - exp(-fog t)) = sky0 + (c - sky0) exp(-fog t).
+    let keep = math::exp(p, p.neg(p.mul(p.splat(w.fog), h.t)));
+    let s0 = V3::splat(p, w.sky[0]);
+    let fogged = c.sub(p, s0).mul_add(p, keep, s0);
+    encode3(p, V3::select(p, hit, fogged, sky), w.gamma)
+}
+
+/// The sun shadow of world shading: 1 lit, 0 shadowed (soft in between for `Full`).
+#[inline(always)]
+fn sun_shadow<P: Pack>(
+    p: P,
+    f: &Frame,
+    w: &WorldShading,
+    (q, n): (V3<P>, V3<P>),
+    lit: P::M,
+    tally: &mut Tally,
+) -> P::F {
+    let sun = V3::splat(p, w.sun);
+    match w.shadow {
+        ShadowMode::Full { steps, k } => soft_shadow(
+            p,
+            &f.scene,
+            &f.march,
+            (q, n, sun),
+            p.splat(f.march.m.far),
+            k,
+            steps,
+            lit,
+            tally,
+        ),
+        ShadowMode::TerrainAndBounds { steps, spacing } => {
+            let o = n.mul_add(p, p.splat(f.march.m.ray_offset), q);
+            let mut dark = p.none();
+            if let Some(t) = &f.scene.terrain {
+                let mut reach = 1.0f32;
+                for _ in 0..steps {
+                    let x = sun.mul_add(p, p.splat(spacing * reach), o);
+                    tally.sdf += 1;
+                    let ground = t.fbm.height_only(p, x.x, x.z);
+                    dark = p.or(dark, p.lt(x.y, ground));
+                    if !p.any(p.and_not(lit, dark)) {
+                        break;
+                    }
+                    reach = 2.0 * reach + 1.0;
+                }
+            }
+            for b in &f.bounds {
+                if !p.any(p.and_not(lit, dark)) {
+                    break;
+                }
+                tally.sdf += 1;
+                dark = p.or(dark, ray_meets_sphere(p, o, sun, b));
+            }
+            p.select(dark, p.splat(0.0), p.splat(1.0))
+        }
+    }
+}
+
+/// Ambient occlusion `clamp(1 - 3 ao, 0, 1)` of the hits in `live` (1 with no taps).
+#[inline(always)]
+fn occlusion<P: Pack>(
+    p: P,
+    f: &Frame,
+    w: &WorldShading,
+    (q, n, t, m): (V3<P>, V3<P>, P::F, P::I),
+    live: P::M,
+    tally: &mut Tally,
+) -> P::F {
+    let taps = match w.ao {
+        AoMode::Fixed(k) => p.splat(k as f32),
+        AoMode::Adaptive {
+            near,
+            far,
+            near_distance,
+        } => {
+            let k = p.select(
+                p.lt(t, p.splat(near_distance)),
+                p.splat(near as f32),
+                p.splat(far as f32),
+            );
+            match &f.scene.terrain {
+                Some(ter) => {
+                    // Flat terrain lying above the eye: none.
+                    let flat = p.and(
+                        p.and(p.eq_i(m, p.splat_i(ter.material)), p.gt(n.y, p.splat(0.9))),
+                        p.gt(q.y, p.splat(f.camera.position.y)),
+                    );
+                    p.select(flat, p.splat(0.0), k)
+                }
+                None => k,
+            }
+        }
+    };
+    let most = match w.ao {
+        AoMode::Fixed(k) => k,
+        AoMode::Adaptive { near, far, .. } => near.max(far),
+    };
+    let mut ao = p.splat(0.0);
+    let mut sca = p.splat(1.0);
+    // h_i = 0.01 + 0.12 i / max(N - 1, 1), per lane's N.
+    let step = p.div(
+        p.splat(0.12),
+        p.max(p.sub(taps, p.splat(1.0)), p.splat(1.0)),
+    );
+    for i in 0..most {
+        let on = p.and(live, p.lt(p.splat(i as f32), taps));
+        if !p.any(on) {
+            break;
+        }
+        let h = p.fma(p.splat(i as f32), step, p.splat(0.01));
+        let (d, _) = map(p, &f.scene, n.mul_add(p, h, q), on, false, tally);
+        ao = p.select(on, p.fma(p.sub(h, d), sca, ao), ao);
+        sca = p.mul(sca, p.splat(0.95));
+    }
+    p.max(
+        p.splat(0.0),
+        p.min(p.splat(1.0), p.fnma(p.splat(3.0), ao, p.splat(1.0))),
+    )
+}
