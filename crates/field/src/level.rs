@@ -2,7 +2,7 @@
 //! material palette and spawn points, and their validation.
 //!
 //! ```
-//! use craterfield_field::Level;
+//! use craterfield_field::{Level, Sdf};
 //! let level = Level::from_ron(r#"Level(
 //!     name: "pond",
 //!     bounds: (min: (0.0, 0.0), max: (512.0, 256.0)),

@@ -5,8 +5,6 @@ use serde::{Deserialize, Serialize};
 
 use craterfield_field::Sample;
 
-use super::hash::StateHasher;
-
 /// The field sample at one of a body's probe points, kept while the point stays where it
 /// is and the terrain there does not change: a body at rest re-reads it instead of
 /// evaluating the field again. Derived data, not state: never hashed, and a hit gives
@@ -141,43 +139,5 @@ impl Body {
     /// Radius of a disc around `pos` that holds the whole body.
     pub fn bounding_radius(&self) -> f32 {
         self.radius + self.half_length
-    }
-
-    /// Mixes the body's canonical words: every field, floats by their bits, in a fixed
-    /// order.
-    pub(crate) fn hash_into(&self, h: &mut StateHasher) {
-        h.u32(self.id);
-        match self.kind {
-            BodyKind::Vehicle {
-                player,
-                prev_buttons,
-                cooldown,
-                stick,
-            } => h.word(
-                1 | u64::from(player) << 8
-                    | u64::from(prev_buttons) << 16
-                    | u64::from(cooldown) << 24
-                    | u64::from(stick) << 40,
-            ),
-            BodyKind::Projectile { owner, weapon } => {
-                h.word(2 | u64::from(owner) << 8 | u64::from(weapon) << 16)
-            }
-            BodyKind::Debris => h.word(3),
-        }
-        for v in [self.pos, self.vel, self.axis, self.ground, self.surface] {
-            h.word(u64::from(v.x.to_bits()) | u64::from(v.y.to_bits()) << 32);
-        }
-        for f in [
-            self.radius,
-            self.half_length,
-            self.inv_mass,
-            self.friction,
-            self.restitution,
-            self.drive,
-            self.clearance,
-        ] {
-            h.f32(f);
-        }
-        h.word(self.health as u32 as u64);
     }
 }

@@ -1,9 +1,15 @@
-//! The state hash: a fast 64-bit hash over canonical bytes.
+//! The state hash: a fast 64-bit hash over canonical bytes, and what it covers (the level,
+//! the setup, the bodies, the chain of applied events).
 //!
 //! Used to detect desyncs (peers compare it every tick, replays store it periodically), so
 //! it must be cheap and identical on every machine: it reads explicit little-endian words,
 //! never memory layouts. It is not cryptographic; a checksum against accidents, not
 //! against an adversary.
+
+use craterfield_field::{Event, EventKind, Level};
+
+use super::body::{Body, BodyKind};
+use super::settings::Settings;
 
 /// Hashes 64-bit words (multiply-rotate mixing, with a final avalanche).
 #[derive(Clone, Copy, Debug)]
@@ -82,6 +88,108 @@ pub(crate) fn hash_bytes(seed: u64, b: &[u8]) -> u64 {
     let mut h = StateHasher::new(seed);
     h.bytes(b);
     h.finish()
+}
+
+/// Hash of a level (its canonical RON text), to tie replays and peers to the same map.
+pub fn level_hash(level: &Level) -> u64 {
+    let text = ron::to_string(level.file()).unwrap_or_default();
+    hash_bytes(0x6c65_7665_6c00, text.as_bytes())
+}
+
+/// Hash of what a match is played with: the level, every setting and the player count.
+/// Part of every state hash, so peers (and replays) that differ in any of them disagree
+/// from tick 0, and the identity a snapshot must share with the world it is restored into.
+pub(crate) fn setup_hash(level: &Level, settings: &Settings, players: usize) -> u64 {
+    let mut h = StateHasher::new(0x7365_7475_7000);
+    h.word(level_hash(level));
+    // Postcard writes the fields in declaration order as varints: canonical bytes.
+    h.bytes(&postcard::to_stdvec(settings).unwrap_or_default());
+    h.word(players as u64);
+    h.finish()
+}
+
+/// The state hash over its parts (see [`World::state_hash`](super::World::state_hash)), so a received
+/// [`WorldState`](super::WorldState) can be checked before it is applied.
+pub(crate) fn state_hash_of(
+    setup: u64,
+    tick: u32,
+    next_id: u32,
+    events_hash: u64,
+    events_applied: u64,
+    bodies: &[Body],
+) -> u64 {
+    let mut h = StateHasher::new(0x7374_6174_6500);
+    h.word(setup);
+    h.u32(tick);
+    h.u32(next_id);
+    h.word(events_hash);
+    h.word(events_applied);
+    h.word(bodies.len() as u64);
+    for b in bodies {
+        hash_body(b, &mut h);
+    }
+    h.finish()
+}
+
+/// The event chain after `e`: the world folds every applied event into one word, so the
+/// state hash covers the terrain's whole history in O(1).
+pub(crate) fn chain_event(chain: u64, e: &Event) -> u64 {
+    let mut h = StateHasher::new(chain);
+    for w in event_words(e) {
+        h.word(w);
+    }
+    h.finish()
+}
+
+/// An event's canonical words.
+fn event_words(e: &Event) -> [u64; 4] {
+    let kind = match e.kind {
+        EventKind::Carve => 0u64,
+        EventKind::Fill => 1,
+    };
+    [
+        kind | u64::from(e.material) << 8 | u64::from(e.grow_ticks) << 24,
+        u64::from(e.center[0] as u32) | u64::from(e.center[1] as u32) << 32,
+        u64::from(e.radius as u32) | u64::from(e.rim as u32) << 32,
+        u64::from(e.tick),
+    ]
+}
+
+/// Mixes a body's canonical words: every field, floats by their bits, in a fixed order.
+fn hash_body(b: &Body, h: &mut StateHasher) {
+    h.u32(b.id);
+    match b.kind {
+        BodyKind::Vehicle {
+            player,
+            prev_buttons,
+            cooldown,
+            stick,
+        } => h.word(
+            1 | u64::from(player) << 8
+                | u64::from(prev_buttons) << 16
+                | u64::from(cooldown) << 24
+                | u64::from(stick) << 40,
+        ),
+        BodyKind::Projectile { owner, weapon } => {
+            h.word(2 | u64::from(owner) << 8 | u64::from(weapon) << 16)
+        }
+        BodyKind::Debris => h.word(3),
+    }
+    for v in [b.pos, b.vel, b.axis, b.ground, b.surface] {
+        h.word(u64::from(v.x.to_bits()) | u64::from(v.y.to_bits()) << 32);
+    }
+    for f in [
+        b.radius,
+        b.half_length,
+        b.inv_mass,
+        b.friction,
+        b.restitution,
+        b.drive,
+        b.clearance,
+    ] {
+        h.f32(f);
+    }
+    h.word(b.health as u32 as u64);
 }
 
 #[cfg(test)]

@@ -23,8 +23,8 @@ pub(crate) mod state;
 pub(crate) mod world;
 
 pub use body::{Body, BodyKind};
-pub use hash::StateHasher;
+pub use hash::{StateHasher, level_hash};
 pub use input::{Input, InputError, buttons};
 pub use settings::{Settings, SettingsError, VehicleSettings, WeaponSettings, units};
 pub use state::WorldState;
-pub use world::{EVENT_CENTER_STEP, MAX_PLAYERS, SimError, Snapshot, World, level_hash};
+pub use world::{EVENT_CENTER_STEP, MAX_PLAYERS, SimError, Snapshot, World};

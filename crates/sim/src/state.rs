@@ -10,7 +10,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::body::{Body, BodyKind};
-use super::world::{SimError, World, in_play, state_hash_of};
+use super::hash::state_hash_of;
+use super::world::{SimError, World, in_play};
 use craterfield_field::TerrainState;
 
 /// Largest speed a received body may have, world units per second (far above anything

@@ -22,7 +22,7 @@ use craterfield_field::{Graph, Level, Sample, Sdf, Terrain, TerrainError};
 use super::body::{Body, BodyKind, ProbeCache};
 use super::collide::{self, Broadphase, Overlap};
 use super::contact;
-use super::hash::StateHasher;
+use super::hash::{self, setup_hash, state_hash_of};
 use super::input::{Input, buttons};
 use super::projectile::{self, Flight, Sweep};
 use super::settings::{Settings, SettingsError, WeaponSettings, units};
@@ -128,7 +128,7 @@ impl Snapshot {
 #[derive(Clone, Debug)]
 pub struct World {
     pub(super) settings: Settings,
-    /// Hash of the level, the settings and the player count (see [`setup_hash`]).
+    /// Hash of the level, the settings and the player count (see [`hash::setup_hash`]).
     pub(super) setup: u64,
     pub(super) terrain: Terrain<Graph>,
     pub(super) players: usize,
@@ -162,60 +162,6 @@ struct Scratch {
 struct Blast {
     at: Vec2,
     weapon: WeaponSettings,
-}
-
-/// Hash of a level (its canonical RON text), to tie replays and peers to the same map.
-pub fn level_hash(level: &Level) -> u64 {
-    let text = ron::to_string(level.file()).unwrap_or_default();
-    super::hash::hash_bytes(0x6c65_7665_6c00, text.as_bytes())
-}
-
-/// Hash of what a match is played with: the level, every setting and the player count.
-/// Part of every state hash, so peers (and replays) that differ in any of them disagree
-/// from tick 0, and the identity a snapshot must share with the world it is restored into.
-fn setup_hash(level: &Level, settings: &Settings, players: usize) -> u64 {
-    let mut h = StateHasher::new(0x7365_7475_7000);
-    h.word(level_hash(level));
-    // Postcard writes the fields in declaration order as varints: canonical bytes.
-    h.bytes(&postcard::to_stdvec(settings).unwrap_or_default());
-    h.word(players as u64);
-    h.finish()
-}
-
-/// The state hash over its parts (see [`World::state_hash`]), so a received
-/// [`WorldState`](super::WorldState) can be checked before it is applied.
-pub(super) fn state_hash_of(
-    setup: u64,
-    tick: u32,
-    next_id: u32,
-    events_hash: u64,
-    events_applied: u64,
-    bodies: &[Body],
-) -> u64 {
-    let mut h = StateHasher::new(0x7374_6174_6500);
-    h.word(setup);
-    h.u32(tick);
-    h.u32(next_id);
-    h.word(events_hash);
-    h.word(events_applied);
-    h.word(bodies.len() as u64);
-    for b in bodies {
-        b.hash_into(&mut h);
-    }
-    h.finish()
-}
-
-fn event_words(e: &Event) -> [u64; 4] {
-    let kind = match e.kind {
-        EventKind::Carve => 0u64,
-        EventKind::Fill => 1,
-    };
-    [
-        kind | u64::from(e.material) << 8 | u64::from(e.grow_ticks) << 24,
-        u64::from(e.center[0] as u32) | u64::from(e.center[1] as u32) << 32,
-        u64::from(e.radius as u32) | u64::from(e.rim as u32) << 32,
-        u64::from(e.tick),
-    ]
 }
 
 impl World {
@@ -328,11 +274,7 @@ impl World {
     }
 
     fn chain_event(&mut self, e: &Event) {
-        let mut h = StateHasher::new(self.events_hash);
-        for w in event_words(e) {
-            h.word(w);
-        }
-        self.events_hash = h.finish();
+        self.events_hash = hash::chain_event(self.events_hash, e);
     }
 
     /// The settings.

@@ -188,7 +188,7 @@ impl<F: Sdf> Terrain<F> {
         };
         // A brick state whose brick is missing falls back to the base on the point path;
         // the lanes would not (it cannot happen: the grid keeps every brick it lists).
-        let brick = match self.grid.cells.get(cell).map(|c| c.state.0) {
+        let brick = match self.grid.stored_cell(cell).map(|c| c.state.0) {
             Some(CellState::Brick(id) | CellState::Air(MaterialSource::Brick(id))) => Some(id),
             _ => None,
         };
@@ -235,7 +235,7 @@ impl<F: Sdf> Terrain<F> {
     }
 
     fn group(&self, points: &[Vec2]) -> (Vec<u32>, Vec<Group>) {
-        group(points, |p| self.grid.cell_index(p), self.grid.cells.len())
+        group(points, |p| self.grid.cell_index(p), self.grid.cell_count())
     }
 
     /// How a group's lanes start (state and base).
@@ -247,7 +247,7 @@ impl<F: Sdf> Terrain<F> {
     ) -> Start<'p> {
         let m = self.options.band;
         let state = cell
-            .and_then(|c| self.grid.cells.get(c))
+            .and_then(|c| self.grid.stored_cell(c))
             .map_or(CellState::Base, |c| c.state.0);
         match state {
             CellState::Base => Start::Base(cell_tapes.get(&self.grid, cell)),
@@ -271,7 +271,7 @@ impl<F: Sdf> Terrain<F> {
     /// [`Terrain::prepared_events`] of the first `upto` listed events only.
     fn prepared_prefix(&self, cell: Option<usize>, upto: usize, out: &mut Vec<Prepared>) {
         out.clear();
-        let list = cell.and_then(|c| self.grid.cells.get(c));
+        let list = cell.and_then(|c| self.grid.stored_cell(c));
         for e in list.into_iter().flat_map(|c| c.events.iter().take(upto)) {
             let Some(e) = self.events.get(*e as usize) else {
                 continue;

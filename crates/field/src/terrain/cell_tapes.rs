@@ -192,7 +192,7 @@ impl CellTapes {
     pub(super) fn new(program: Arc<Program>, grid: &Grid, band: f32) -> CellTapes {
         CellTapes {
             program,
-            cells: (0..grid.cells.len()).map(|_| OnceLock::new()).collect(),
+            cells: (0..grid.cell_count()).map(|_| OnceLock::new()).collect(),
             halo: Halo::new(grid),
             outside: OnceLock::new(),
             interned: Arc::default(),

@@ -15,8 +15,8 @@
 //! so runs that compact at different moments (a re-simulation after a rollback, say) stay
 //! bitwise equal.
 
-use super::Terrain;
 use super::error::TerrainError;
+use super::{Terrain, take_revision};
 use crate::sdf::Sdf;
 
 impl<F: Sdf> Terrain<F> {
@@ -52,7 +52,11 @@ impl<F: Sdf> Terrain<F> {
         }
         let mut kept = keep.iter();
         self.events.retain(|_| kept.next().copied().unwrap_or(true));
-        self.renumber_lists(&renumber);
+        // Every rewritten cell (and pre-image) takes a fresh revision: a mirror that sent
+        // the old indices resends it.
+        let revisions = &mut self.next_revision;
+        self.grid
+            .renumber_events(&renumber, || take_revision(revisions));
         self.forgotten += dropped as u64;
         dropped
     }
@@ -61,17 +65,12 @@ impl<F: Sdf> Terrain<F> {
     /// journal may still pop.
     fn events_to_keep(&self) -> Vec<bool> {
         let n = self.events.len();
-        let journal = self.grid.journal.as_ref();
-        let poppable = journal.map_or(0, |j| j.appended_events()).min(n);
+        let poppable = self.grid.poppable_events().min(n);
         let mut keep = vec![false; n];
         for k in keep.iter_mut().skip(n - poppable) {
             *k = true;
         }
-        let listed = self.grid.cells.iter().map(|c| &c.events);
-        let journaled = journal
-            .into_iter()
-            .flat_map(|j| j.cell_images().map(|c| &c.events));
-        for list in listed.chain(journaled) {
+        for list in self.grid.event_lists() {
             for &i in list {
                 if let Some(k) = keep.get_mut(i as usize) {
                     *k = true;
@@ -79,39 +78,6 @@ impl<F: Sdf> Terrain<F> {
             }
         }
         keep
-    }
-
-    /// Rewrites every list (cells and journal pre-images) through `renumber`, giving each
-    /// rewritten cell a fresh revision: a mirror that sent the old indices resends it.
-    fn renumber_lists(&mut self, renumber: &[u32]) {
-        let map = |list: &mut Vec<u32>| {
-            for i in list.iter_mut() {
-                *i = renumber.get(*i as usize).copied().unwrap_or(u32::MAX);
-            }
-        };
-        for cell in 0..self.grid.cells.len() {
-            let changed = self.grid.cells.get(cell).is_some_and(|c| {
-                c.events
-                    .iter()
-                    .any(|&i| renumber.get(i as usize) != Some(&i))
-            });
-            if changed {
-                let revision = self.new_revision();
-                if let Some(c) = self.grid.cells.get_mut(cell) {
-                    map(&mut c.events);
-                    c.revision = revision;
-                }
-            }
-        }
-        let mut images: Vec<_> = match self.grid.journal.as_mut() {
-            Some(j) => j.cell_images_mut().collect(),
-            None => Vec::new(),
-        };
-        for image in &mut images {
-            map(&mut image.events);
-            self.next_revision += 1;
-            image.revision = self.next_revision;
-        }
     }
 
     /// Compacts when the log is full and has grown since the last compaction by at least

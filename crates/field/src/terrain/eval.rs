@@ -74,7 +74,7 @@ impl<F: Sdf> Terrain<F> {
         upto: usize,
     ) -> (N, MaterialId) {
         let m = self.options.band;
-        let Some(c) = self.grid.cells.get(cell) else {
+        let Some(c) = self.grid.stored_cell(cell) else {
             return self.base_clamped::<N, MAT>(p, None);
         };
         let pn = N::point(p);

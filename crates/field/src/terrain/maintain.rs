@@ -4,8 +4,8 @@
 //! terrain proves the listing and the pruning bitwise equal to the brute force, and bounds
 //! a brick's error.
 
-use super::Terrain;
 use super::grid::{self, Brick, CellState, MaterialSource};
+use super::{Terrain, take_revision};
 use crate::event::{Event, EventKind};
 use crate::sdf::Sdf;
 use craterfield_core::det::quant::FIXED_ONE;
@@ -42,18 +42,11 @@ fn event_extent(e: &Event) -> f64 {
 }
 
 impl<F: Sdf> Terrain<F> {
-    /// Rebuilds the grid by replaying every event at the current tick.
+    /// Rebuilds the grid by replaying every event at the current tick (which forgets the
+    /// undo history: see [`grid::Grid::restart`]).
     pub(super) fn rebuild(&mut self) {
-        self.grid.clear();
-        for i in 0..self.grid.cells.len() {
-            let revision = self.new_revision();
-            if let Some(c) = self.grid.cells.get_mut(i) {
-                c.revision = revision;
-            }
-        }
-        if let Some(j) = &mut self.grid.journal {
-            j.reset();
-        }
+        let revisions = &mut self.next_revision;
+        self.grid.restart(|| take_revision(revisions));
         self.over_cap.clear();
         for idx in 0..self.events.len() as u32 {
             self.insert(idx);
@@ -75,8 +68,7 @@ impl<F: Sdf> Terrain<F> {
         let max = self.options.max_cell_events;
         self.cells_of(e).into_iter().find(|&cell| {
             self.grid
-                .cells
-                .get(cell)
+                .stored_cell(cell)
                 .is_some_and(|c| c.events.len() >= max)
         })
     }
@@ -87,11 +79,8 @@ impl<F: Sdf> Terrain<F> {
         };
         let settled_at = e.tick.saturating_add(u32::from(e.grow_ticks));
         for cell in self.cells_of(&e) {
-            self.record_cell(cell);
-            let revision = self.new_revision();
-            if let Some(c) = self.grid.cells.get_mut(cell) {
+            if let Some(c) = self.begin_cell_change(cell) {
                 c.events.push(idx);
-                c.revision = revision;
                 c.settled_at = c.settled_at.max(settled_at);
             }
             self.prune_new(cell, idx, &e);
@@ -108,7 +97,7 @@ impl<F: Sdf> Terrain<F> {
         let rect = self.grid.cell_rect(cell);
         let center = [fixed_f64(e.center[0]), fixed_f64(e.center[1])];
         let g = 2.0 * grid::guard(event_extent(e) + band, &rect);
-        let Some(c) = self.grid.cells.get(cell) else {
+        let Some(c) = self.grid.stored_cell(cell) else {
             return;
         };
         // 1. Cell reset.
@@ -135,11 +124,11 @@ impl<F: Sdf> Terrain<F> {
             };
             if let Some(state) = new_state {
                 self.grid.set_state(cell, state);
-                if let Some(c) = self.grid.cells.get_mut(cell) {
+                if let Some(c) = self.grid.edit_recorded_cell(cell) {
                     c.events.clear();
                 }
                 self.over_cap.remove(&cell);
-                self.grid.stats.resets += 1;
+                self.grid.count_reset();
                 return;
             }
         }
@@ -175,7 +164,7 @@ impl<F: Sdf> Terrain<F> {
                 break;
             }
         }
-        let Some(c) = self.grid.cells.get_mut(cell) else {
+        let Some(c) = self.grid.edit_recorded_cell(cell) else {
             return;
         };
         let mut pruned = drop.len() as u64;
@@ -189,7 +178,7 @@ impl<F: Sdf> Terrain<F> {
                 c.events.remove(pos);
             }
         }
-        self.grid.stats.pruned += pruned;
+        self.grid.count_pruned(pruned);
     }
 
     /// The brick of `cell`'s state and its first `prefix` events: its field at the
@@ -223,7 +212,7 @@ impl<F: Sdf> Terrain<F> {
     /// Bakes the longest settled prefix of an over-long list into a brick.
     pub(super) fn compact(&mut self, cell: usize) {
         let cap = self.options.cell_cap;
-        let Some(c) = self.grid.cells.get(cell) else {
+        let Some(c) = self.grid.stored_cell(cell) else {
             return;
         };
         if c.events.len() <= cap {
@@ -243,15 +232,14 @@ impl<F: Sdf> Terrain<F> {
             let brick = self.bake(cell, prefix);
             let id = self.grid.store_brick(cell, brick);
             self.grid.set_state(cell, CellState::Brick(id));
-            if let Some(c) = self.grid.cells.get_mut(cell) {
+            if let Some(c) = self.grid.edit_recorded_cell(cell) {
                 c.events.drain(..prefix.min(c.events.len()));
             }
-            self.grid.stats.bakes += 1;
+            self.grid.count_bake();
         }
         if self
             .grid
-            .cells
-            .get(cell)
+            .stored_cell(cell)
             .is_some_and(|c| c.events.len() > cap)
         {
             self.over_cap.insert(cell);

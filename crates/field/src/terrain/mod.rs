@@ -75,7 +75,6 @@ mod error;
 mod eval;
 mod field;
 pub(crate) mod grid;
-pub(crate) mod journal;
 mod limits;
 mod maintain;
 mod options;
@@ -93,12 +92,11 @@ use super::sdf::Sdf;
 use cell_tapes::CellTapes;
 use craterfield_core::backend::Backend;
 pub use error::TerrainError;
+use grid::Cell;
 pub use grid::{
     CellState, CellView, Grid, GridError, GridStats, MAX_BRICK_RESOLUTION, MAX_CELLS,
-    MaterialSource,
+    MaterialSource, RollbackError, TerrainMark,
 };
-use journal::Entry;
-pub use journal::{RollbackError, TerrainMark};
 pub use limits::{MAX_BRICK_BYTES, MAX_CELL_TAPE_BYTES, MAX_COORD};
 pub use options::TerrainOptions;
 pub use proof::{CellBounds, EventDiscs, RectSign};
@@ -254,7 +252,7 @@ impl<F: Sdf> Terrain<F> {
         }
         let idx = self.events.len() as u32;
         self.events.push(e);
-        self.grid.record(Entry::Event);
+        self.grid.record_event();
         self.insert(idx);
         Ok(())
     }
@@ -270,15 +268,11 @@ impl<F: Sdf> Terrain<F> {
             self.tick = tick;
             self.rebuild();
         } else if tick > self.tick {
-            self.grid.record(Entry::Tick(self.tick));
+            self.grid.record_tick(self.tick);
             self.tick = tick;
             let pending: Vec<usize> = self.over_cap.iter().copied().collect();
             for cell in pending {
-                self.record_cell(cell);
-                let revision = self.new_revision();
-                if let Some(c) = self.grid.cells.get_mut(cell) {
-                    c.revision = revision;
-                }
+                self.begin_cell_change(cell);
                 self.over_cap.remove(&cell);
                 self.compact(cell);
             }
@@ -288,8 +282,18 @@ impl<F: Sdf> Terrain<F> {
 
     /// A revision number never handed out before.
     fn new_revision(&mut self) -> u64 {
-        self.next_revision += 1;
-        self.next_revision
+        take_revision(&mut self.next_revision)
+    }
+
+    /// Starts a change of `cell`: the grid journals its pre-image (with whether it is over
+    /// its cap now) and the cell takes a fresh revision. Returns the cell for the change's
+    /// first edit; the later ones go through [`Grid::edit_recorded_cell`].
+    fn begin_cell_change(&mut self, cell: usize) -> Option<&mut Cell> {
+        let revision = self.new_revision();
+        let over_cap = self.over_cap.contains(&cell);
+        let c = self.grid.record_and_edit_cell(cell, over_cap)?;
+        c.revision = revision;
+        Some(c)
     }
 
     /// A number that changes whenever the field at `p` may change, or `None` while it
@@ -301,7 +305,7 @@ impl<F: Sdf> Terrain<F> {
         let Some(cell) = self.grid.cell_index(p) else {
             return Some(0);
         };
-        let c = self.grid.cells.get(cell)?;
+        let c = self.grid.stored_cell(cell)?;
         (self.tick >= c.settled_at).then_some(c.revision)
     }
 
@@ -309,7 +313,7 @@ impl<F: Sdf> Terrain<F> {
     pub fn cell_event_count(&self, p: Vec2) -> usize {
         self.grid
             .cell_index(p)
-            .and_then(|i| self.grid.cells.get(i))
+            .and_then(|i| self.grid.stored_cell(i))
             .map_or(0, |c| c.events.len())
     }
 
@@ -317,7 +321,7 @@ impl<F: Sdf> Terrain<F> {
     pub fn cell_state(&self, p: Vec2) -> Option<CellState> {
         self.grid
             .cell_index(p)
-            .and_then(|i| self.grid.cells.get(i))
+            .and_then(|i| self.grid.stored_cell(i))
             .map(|c| c.state.0)
     }
 
@@ -334,11 +338,11 @@ impl<F: Sdf> Terrain<F> {
 
     /// Grid counters.
     pub fn stats(&self) -> GridStats {
-        let mut s = self.grid.stats;
-        s.cells = self.grid.cells.len();
+        let mut s = self.grid.counters();
+        s.cells = self.grid.cell_count();
         s.bricks = self.grid.live_bricks();
         s.over_cap_cells = self.over_cap.len();
-        for c in &self.grid.cells {
+        for c in self.grid.stored_cells() {
             s.max_cell_events = s.max_cell_events.max(c.events.len());
             s.total_cell_events += c.events.len();
             match c.state.0 {
@@ -350,4 +354,10 @@ impl<F: Sdf> Terrain<F> {
         }
         s
     }
+}
+
+/// Hands out the next revision of `counter`: a number it never handed out before.
+fn take_revision(counter: &mut u64) -> u64 {
+    *counter += 1;
+    *counter
 }

@@ -101,7 +101,7 @@ impl<F: Sdf> Terrain<F> {
     /// A caller asking about many rectangles of one cell reads the events once with
     /// [`Terrain::event_discs`] and asks [`Terrain::rect_sign_of`].
     pub fn rect_sign(&self, cell: usize, min: Vec2, max: Vec2, above: f32, below: f32) -> RectSign {
-        let Some(c) = self.grid.cells.get(cell) else {
+        let Some(c) = self.grid.stored_cell(cell) else {
             return RectSign::Unknown;
         };
         // The same walk as `rect_sign_of`, reading the list in place: one question about a
@@ -116,7 +116,7 @@ impl<F: Sdf> Terrain<F> {
     /// geometry where the cell starts at least that high everywhere and lists carves
     /// only (a carve never lowers the field, and the clamp keeps it at `M >= above`).
     pub(crate) fn rect_above(&self, cell: usize, min: Vec2, max: Vec2, above: f32) -> bool {
-        let Some(c) = self.grid.cells.get(cell) else {
+        let Some(c) = self.grid.stored_cell(cell) else {
             return false;
         };
         let start = self.proof_start(cell);
@@ -144,7 +144,7 @@ impl<F: Sdf> Terrain<F> {
     /// them, in list order (events not yet in effect left out), and its starting state.
     /// `None`: no such cell. Valid until the terrain changes.
     pub fn event_discs(&self, cell: usize) -> Option<EventDiscs> {
-        let c = self.grid.cells.get(cell)?;
+        let c = self.grid.stored_cell(cell)?;
         let discs = c.events.iter().filter_map(|&i| self.disc(i)).collect();
         Some(EventDiscs {
             cell,
@@ -277,7 +277,7 @@ impl<F: Sdf> Terrain<F> {
     /// band for air, its negation for solid, a brick's smallest and largest samples.
     /// `None`: no such cell.
     pub fn cell_start_range(&self, cell: usize) -> Option<(f32, f32)> {
-        self.grid.cells.get(cell)?;
+        self.grid.stored_cell(cell)?;
         let min = self.grid.cell_min_f32(cell);
         let max = min + Vec2::splat(self.grid.cell_size());
         Some(self.start_range(cell, min, max))
@@ -294,7 +294,7 @@ impl<F: Sdf> Terrain<F> {
     /// cell, or a brick to read over each rectangle.
     fn proof_start(&self, cell: usize) -> Start {
         let m = self.options.band;
-        let Some(c) = self.grid.cells.get(cell) else {
+        let Some(c) = self.grid.stored_cell(cell) else {
             return Start::Range(-m, m);
         };
         match c.state.0 {
@@ -331,7 +331,7 @@ impl<F: Sdf> Terrain<F> {
     /// gradient is at most `sqrt(2) L` and its error at most `L h / sqrt(2)`
     /// ([`Terrain::brick_error_bound`] with the cell's `L`).
     pub fn cell_bounds(&self, cell: usize) -> Option<CellBounds> {
-        let c = self.grid.cells.get(cell)?;
+        let c = self.grid.stored_cell(cell)?;
         let events = if c.events.is_empty() { 0.0 } else { 1.0 };
         let base = self.base_cell_lipschitz(cell);
         let exact = base.max(1.0);
@@ -369,7 +369,7 @@ impl<F: Sdf> Terrain<F> {
     /// fill has that material. `None` when it may vary (or the cell does not exist).
     pub fn cell_material(&self, cell: usize) -> Option<MaterialId> {
         let start = self.start_material(cell)?;
-        let c = self.grid.cells.get(cell)?;
+        let c = self.grid.stored_cell(cell)?;
         let all_same = c.events.iter().all(|&i| {
             self.events
                 .get(i as usize)
@@ -381,7 +381,7 @@ impl<F: Sdf> Terrain<F> {
     /// Whether the material cell `cell` starts from (before its events) is one constant
     /// over the cell, and which.
     pub fn start_material(&self, cell: usize) -> Option<MaterialId> {
-        let c = self.grid.cells.get(cell)?;
+        let c = self.grid.stored_cell(cell)?;
         match c.state.0 {
             CellState::Base | CellState::Air(MaterialSource::Base) => self.base_material(cell),
             CellState::Air(MaterialSource::Constant(m)) | CellState::Solid(m) => Some(m),
@@ -424,7 +424,7 @@ impl<F: Sdf> Terrain<F> {
         let Some(start) = self.start_material(cell) else {
             return 0.0;
         };
-        let Some(c) = self.grid.cells.get(cell) else {
+        let Some(c) = self.grid.stored_cell(cell) else {
             return 0.0;
         };
         let band = self.options.band;

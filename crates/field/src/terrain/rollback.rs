@@ -1,8 +1,9 @@
-//! Rolling a terrain back: the public mark/rollback API over the undo journal, and the
-//! recording and undoing of one cell's pre-image.
+//! Rolling a terrain back: the public mark/rollback API over the undo journal the grid
+//! keeps, and the undoing of what the terrain holds outside the grid (the event log, the
+//! tick, the over-cap set).
 
 use super::Terrain;
-use super::journal::{Entry, Journal, RollbackError, TerrainMark};
+use super::grid::{Entry, RollbackError, TerrainMark};
 use crate::sdf::Sdf;
 
 impl<F: Sdf> Terrain<F> {
@@ -10,15 +11,12 @@ impl<F: Sdf> Terrain<F> {
     /// work. Each change then also stores what it overwrote (a few cells per event), until
     /// [`Terrain::forget_before`] drops it.
     pub fn enable_rollback(&mut self) {
-        if self.grid.journal.is_none() {
-            self.grid.journal = Some(Journal::default());
-        }
+        self.grid.enable_journal();
     }
 
     /// The current position in the terrain's history, if rollback is enabled.
     pub fn mark(&self) -> Option<TerrainMark> {
-        let j = self.grid.journal.as_ref()?;
-        Some(j.mark(self.grid.stats, self.events_applied()))
+        self.grid.mark(self.events_applied())
     }
 
     /// Returns to `mark`: events applied and tick changes made since are undone, in
@@ -27,64 +25,37 @@ impl<F: Sdf> Terrain<F> {
     ///
     /// A rebuild (moving the tick backwards with [`Terrain::set_tick`]) forgets the history.
     pub fn rollback(&mut self, mark: &TerrainMark) -> Result<(), RollbackError> {
-        let journal = self.grid.journal.as_mut().ok_or(RollbackError::Disabled)?;
-        journal.check(mark)?;
-        while let Some(entry) = self
-            .grid
-            .journal
-            .as_mut()
-            .and_then(|j| j.pop_after(mark.pos()))
-        {
-            self.undo(entry);
-        }
-        self.grid.stats = mark.stats();
-        Ok(())
+        let (events, tick, over_cap) = (&mut self.events, &mut self.tick, &mut self.over_cap);
+        self.grid.rewind_to(mark, |entry| match *entry {
+            Entry::Event => {
+                events.pop();
+            }
+            Entry::Tick(t) => *tick = t,
+            Entry::Cell {
+                cell,
+                over_cap: was_over,
+                ..
+            } => {
+                if was_over {
+                    over_cap.insert(cell);
+                } else {
+                    over_cap.remove(&cell);
+                }
+            }
+            // The grid restores these itself.
+            Entry::Brick { .. } | Entry::BrickPushed => {}
+            Entry::FreePushed | Entry::FreePopped(_) => {}
+        })
     }
 
     /// Forgets the history before `mark` (older marks can no longer be rolled back to),
     /// bounding the journal's memory.
     pub fn forget_before(&mut self, mark: &TerrainMark) {
-        if let Some(j) = &mut self.grid.journal {
-            j.forget_before(mark);
-        }
+        self.grid.forget_before(mark);
     }
 
     /// Journal entries kept (0 when rollback is off).
     pub fn journal_len(&self) -> usize {
-        self.grid.journal.as_ref().map_or(0, Journal::len)
-    }
-
-    /// Records `cell`'s pre-image before a change.
-    pub(super) fn record_cell(&mut self, cell: usize) {
-        if self.grid.journal.is_none() {
-            return;
-        }
-        if let Some(c) = self.grid.cells.get(cell) {
-            let entry = Entry::Cell {
-                cell,
-                before: c.clone(),
-                over_cap: self.over_cap.contains(&cell),
-            };
-            self.grid.record(entry);
-        }
-    }
-
-    /// Restores one pre-image.
-    pub(super) fn undo(&mut self, entry: Entry) {
-        match entry {
-            Entry::Event => {
-                self.events.pop();
-            }
-            Entry::Tick(t) => self.tick = t,
-            Entry::Cell { cell, over_cap, .. } => {
-                if over_cap {
-                    self.over_cap.insert(cell);
-                } else {
-                    self.over_cap.remove(&cell);
-                }
-                self.grid.undo(entry);
-            }
-            other => self.grid.undo(other),
-        }
+        self.grid.journal_len()
     }
 }

@@ -141,9 +141,9 @@ impl<F: Sdf> Terrain<F> {
                 .flat_map(|b| b.materials.iter().copied())
                 .collect(),
             free_bricks: free.to_vec(),
-            counters: self.grid.stats,
+            counters: self.grid.counters(),
         };
-        for (i, c) in self.grid.cells.iter().enumerate() {
+        for (i, c) in self.grid.stored_cells().iter().enumerate() {
             let fresh =
                 matches!(c.state.0, CellState::Base) && c.events.is_empty() && c.settled_at == 0;
             if !fresh {
@@ -164,7 +164,7 @@ impl<F: Sdf> Terrain<F> {
     /// naming what, and nothing changes.
     pub fn restore_state(&mut self, state: &TerrainState) -> Result<(), TerrainError> {
         self.check_state(state)?;
-        let mut cells = vec![Cell::default(); self.grid.cells.len()];
+        let mut cells = vec![Cell::default(); self.grid.cell_count()];
         for (i, state, settled, list) in state.cells() {
             if let Some(c) = cells.get_mut(i as usize) {
                 c.state = CellStateSlot(state);
@@ -189,9 +189,6 @@ impl<F: Sdf> Terrain<F> {
             .collect();
         self.grid
             .replace_contents(cells, bricks, state.free_bricks.clone(), state.counters);
-        if let Some(j) = &mut self.grid.journal {
-            j.reset();
-        }
         self.tick = state.tick;
         self.forgotten = state.forgotten;
         self.events.clone_from(&state.events);
@@ -215,7 +212,7 @@ impl<F: Sdf> Terrain<F> {
     /// Cells: in range, ascending, lists ascending within the log and the per-cell limit,
     /// materials known. Returns which cell owns each brick slot.
     fn check_cells(&self, s: &TerrainState) -> Result<Vec<Option<u32>>, TerrainError> {
-        let count = self.grid.cells.len();
+        let count = self.grid.cell_count();
         let mut owners = vec![None; s.brick_len.len()];
         let mut previous: Option<u32> = None;
         for (at, state, _, list) in s.cells() {
@@ -281,11 +278,11 @@ impl<F: Sdf> Terrain<F> {
     /// Bricks: every slot owned by one cell (full, finite, in the band, known materials)
     /// or on the free list once (empty).
     fn check_bricks(&self, s: &TerrainState, owners: &[Option<u32>]) -> Result<(), TerrainError> {
-        if s.brick_len.len() > self.grid.cells.len() {
+        if s.brick_len.len() > self.grid.cell_count() {
             return Err(bad(format!(
                 "{} brick slots for {} cells",
                 s.brick_len.len(),
-                self.grid.cells.len()
+                self.grid.cell_count()
             )));
         }
         let mut free = vec![false; s.brick_len.len()];

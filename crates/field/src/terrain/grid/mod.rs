@@ -1,23 +1,30 @@
 //! The explosion grid: a regular grid of cells, each with a base state and the list of the
 //! events that can reach it, plus the bricks (baked lattices) that bound a cell's list.
 //!
-//! This module is storage and geometry only; what the states mean and when lists are pruned
-//! or baked is decided by [`crate::terrain`]. Geometry predicates (disc touches
-//! cell, disc contains cell) are evaluated in `f64` with a guard that covers the `f32`
-//! rounding of the query path, so they are conservative for every `f32` query point that the
-//! `f32` cell lookup assigns to the cell.
+//! This module is storage, geometry and the undo journal; what the states mean and when
+//! lists are pruned or baked is decided by [`crate::terrain`]. The grid is the journal's one
+//! owner: its cells, counters and journal are private, the terrain reads them through
+//! accessors and changes them only through the methods of `changes`, which record each
+//! pre-image before they mutate.
+//!
+//! Geometry predicates (disc touches cell, disc contains cell) are evaluated in `f64` with a
+//! guard that covers the `f32` rounding of the query path, so they are conservative for
+//! every `f32` query point that the `f32` cell lookup assigns to the cell.
 
 use crate::sample::MaterialId;
+use craterfield_core::det::math::{Num, V2, nclamp};
 use glam::Vec2;
 use thiserror::Error;
 
 mod cell;
+mod changes;
+mod journal;
 
 pub(crate) use cell::{Brick, Cell, CellStateSlot};
 pub use cell::{CellState, GridStats, MaterialSource};
-
-use super::journal::{Entry, Journal};
-use craterfield_core::det::math::{Num, V2, nclamp};
+pub(in crate::terrain) use journal::Entry;
+use journal::Journal;
+pub use journal::{RollbackError, TerrainMark};
 
 /// Most cells a grid may have, so that memory stays bounded.
 pub const MAX_CELLS: u64 = 4_000_000;
@@ -124,12 +131,15 @@ pub struct Grid {
     nx: u32,
     ny: u32,
     resolution: u32,
-    pub(in crate::terrain) cells: Vec<Cell>,
+    cells: Vec<Cell>,
     bricks: Vec<Brick>,
     free_bricks: Vec<u32>,
-    pub(in crate::terrain) stats: GridStats,
+    stats: GridStats,
     /// The undo journal, when rollback is enabled.
-    pub(in crate::terrain) journal: Option<Journal>,
+    journal: Option<Journal>,
+    /// The cell whose change last recorded a pre-image: the one cell the change's further
+    /// edits may touch (checked in debug builds; see `changes`).
+    recorded_cell: Option<usize>,
 }
 
 impl Grid {
@@ -180,17 +190,8 @@ impl Grid {
             free_bricks: Vec::new(),
             stats: GridStats::default(),
             journal: None,
+            recorded_cell: None,
         })
-    }
-
-    /// Resets every cell to `Base` with an empty list and drops all bricks.
-    pub(crate) fn clear(&mut self) {
-        for c in &mut self.cells {
-            *c = Cell::default();
-        }
-        self.bricks.clear();
-        self.free_bricks.clear();
-        self.stats = GridStats::default();
     }
 
     /// Columns and rows.
@@ -305,104 +306,9 @@ impl Grid {
         Vec2::new(m.x + i as f32 * h, m.y + j as f32 * h)
     }
 
-    /// Stores a baked brick for `cell`, reusing the cell's current brick slot or a free one;
-    /// returns its id. Brick count never exceeds the cell count.
-    pub(crate) fn store_brick(&mut self, cell: usize, brick: Brick) -> u32 {
-        let current = self.cells.get(cell).and_then(|c| c.state.0.brick());
-        let slot = current
-            .filter(|&id| (id as usize) < self.bricks.len())
-            .or_else(|| {
-                let freed = self.free_bricks.pop()?;
-                self.record(Entry::FreePopped(freed));
-                Some(freed).filter(|&id| (id as usize) < self.bricks.len())
-            });
-        match slot {
-            Some(id) => {
-                self.replace_brick(id, brick);
-                id
-            }
-            None => {
-                self.bricks.push(brick);
-                self.record(Entry::BrickPushed);
-                (self.bricks.len() - 1) as u32
-            }
-        }
-    }
-
-    /// Overwrites brick slot `id`, journaling what it held.
-    fn replace_brick(&mut self, id: u32, brick: Brick) {
-        if let Some(slot) = self.bricks.get_mut(id as usize) {
-            let before = std::mem::replace(slot, brick);
-            if let Some(j) = &mut self.journal {
-                j.push(Entry::Brick { id, before });
-            }
-        }
-    }
-
     /// Every brick slot (freed ones are empty) and the free list, for a state snapshot.
     pub(in crate::terrain) fn brick_slots(&self) -> (&[Brick], &[u32]) {
         (&self.bricks, &self.free_bricks)
-    }
-
-    /// Replaces every cell, brick slot, the free list and the counters at once (a state
-    /// snapshot the terrain has checked). The journal is left to the caller.
-    pub(in crate::terrain) fn replace_contents(
-        &mut self,
-        cells: Vec<Cell>,
-        bricks: Vec<Brick>,
-        free_bricks: Vec<u32>,
-        stats: GridStats,
-    ) {
-        self.cells = cells;
-        self.bricks = bricks;
-        self.free_bricks = free_bricks;
-        self.stats = stats;
-    }
-
-    /// Records a pre-image when journaling.
-    pub(crate) fn record(&mut self, e: Entry) {
-        if let Some(j) = &mut self.journal {
-            j.push(e);
-        }
-    }
-
-    /// Restores a grid-level pre-image (the terrain undoes its own kinds).
-    pub(crate) fn undo(&mut self, e: Entry) {
-        match e {
-            Entry::Cell { cell, before, .. } => {
-                if let Some(c) = self.cells.get_mut(cell) {
-                    *c = before;
-                }
-            }
-            Entry::Brick { id, before } => {
-                if let Some(slot) = self.bricks.get_mut(id as usize) {
-                    *slot = before;
-                }
-            }
-            Entry::BrickPushed => {
-                self.bricks.pop();
-            }
-            Entry::FreePushed => {
-                self.free_bricks.pop();
-            }
-            Entry::FreePopped(id) => self.free_bricks.push(id),
-            Entry::Event | Entry::Tick(_) => {}
-        }
-    }
-
-    /// Sets the state of `cell`, freeing a brick it no longer references.
-    pub(crate) fn set_state(&mut self, cell: usize, state: CellState) {
-        let Some(c) = self.cells.get_mut(cell) else {
-            return;
-        };
-        let old = c.state.0.brick();
-        c.state = CellStateSlot(state);
-        let dropped = old.filter(|&id| state.brick() != Some(id));
-        if let Some(id) = dropped.filter(|&id| (id as usize) < self.bricks.len()) {
-            self.replace_brick(id, Brick::default());
-            self.free_bricks.push(id);
-            self.record(Entry::FreePushed);
-        }
     }
 
     /// Bilinear interpolation of brick `id` at `p` in cell `cell` (its value and gradient),
@@ -445,10 +351,25 @@ impl Grid {
             .unwrap_or(0)
     }
 
-    /// Brick `id`, if it exists.
     /// The number of cells (`nx * ny`, row-major).
     pub fn cell_count(&self) -> usize {
         self.cells.len()
+    }
+
+    /// Cell `i` as stored, for the terrain's own reads (`None` past the end).
+    pub(in crate::terrain) fn stored_cell(&self, i: usize) -> Option<&Cell> {
+        self.cells.get(i)
+    }
+
+    /// Every cell as stored, row-major, for the terrain's own reads.
+    pub(in crate::terrain) fn stored_cells(&self) -> &[Cell] {
+        &self.cells
+    }
+
+    /// The counters the grid keeps itself (resets, bakes, pruned events); the terrain
+    /// derives the others.
+    pub(in crate::terrain) fn counters(&self) -> GridStats {
+        self.stats
     }
 
     /// Cell `i`, or `None` past the end.
@@ -478,6 +399,7 @@ impl Grid {
             .map(|b| (b.values.as_slice(), b.materials.as_slice()))
     }
 
+    /// Brick `id`, if it exists.
     pub(crate) fn brick(&self, id: u32) -> Option<&Brick> {
         self.bricks.get(id as usize)
     }

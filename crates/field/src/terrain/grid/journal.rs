@@ -1,24 +1,31 @@
 //! The undo journal: what each change of a terrain overwrote, so that rolling back to a
 //! mark costs what changed since the mark, never the whole terrain.
 //!
+//! The grid owns it and alone writes to it: each of the grid's changing methods records the
+//! pre-image before it mutates, so no caller can change a cell, a brick or the tick past the
+//! journal. The changes that are not undone one by one forget the history instead (a
+//! rebuild, a restored state) or rewrite it alike (compaction renumbers the pre-images'
+//! lists with the cells').
+//!
 //! The event log is append-only (compaction drops only events no cell or pre-image holds,
 //! and none the journal may pop, renumbering the pre-images with the cells) and the grid's
-//! cells change only when an event is inserted or a tick change bakes a list, so every change is recorded as the pre-image of
-//! what it touched: a cell (its state, list and over-cap flag), a brick slot, one step of
-//! the brick free list, an appended event, or the previous tick. Undoing the entries in
-//! reverse restores the exact bytes, bricks included, so a re-simulation after a rollback
-//! produces the same bits as a run that never rolled back.
+//! cells change only when an event is inserted or a tick change bakes a list, so every
+//! change is recorded as the pre-image of what it touched: a cell (its state, list and
+//! over-cap flag), a brick slot, one step of the brick free list, an appended event, or the
+//! previous tick. Undoing the entries in reverse restores the exact bytes, bricks included,
+//! so a re-simulation after a rollback produces the same bits as a run that never rolled
+//! back.
 
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use thiserror::Error;
 
-use crate::terrain::grid::{Brick, Cell, GridStats};
+use super::cell::{Brick, Cell, GridStats};
 
 /// One pre-image.
 #[derive(Clone, Debug)]
-pub(crate) enum Entry {
+pub(in crate::terrain) enum Entry {
     /// A cell before a change, and whether it was over its cap then.
     Cell {
         cell: usize,
@@ -60,12 +67,12 @@ pub struct TerrainMark {
 
 impl TerrainMark {
     /// The journal position.
-    pub(crate) fn pos(&self) -> u64 {
+    pub(super) fn pos(&self) -> u64 {
         self.pos
     }
 
     /// The grid's counters at the mark.
-    pub(crate) fn stats(&self) -> GridStats {
+    pub(super) fn stats(&self) -> GridStats {
         self.stats
     }
 
@@ -113,7 +120,7 @@ fn next_serial() -> u64 {
 
 /// The journal: entries with serial numbers, the oldest ones forgettable.
 #[derive(Clone, Debug)]
-pub(crate) struct Journal {
+pub(super) struct Journal {
     entries: VecDeque<(u64, Entry)>,
     /// Entries forgotten from the front: the position of `entries[0]`.
     start: u64,
@@ -137,7 +144,7 @@ impl Default for Journal {
 
 impl Journal {
     /// Records an entry.
-    pub(crate) fn push(&mut self, e: Entry) {
+    pub(super) fn push(&mut self, e: Entry) {
         self.entries.push_back((next_serial(), e));
     }
 
@@ -147,7 +154,7 @@ impl Journal {
     }
 
     /// A mark at the current end.
-    pub(crate) fn mark(&self, stats: GridStats, events: u64) -> TerrainMark {
+    pub(super) fn mark(&self, stats: GridStats, events: u64) -> TerrainMark {
         TerrainMark {
             pos: self.end(),
             serial: self.entries.back().map_or(self.start_serial, |e| e.0),
@@ -158,7 +165,7 @@ impl Journal {
     }
 
     /// Whether `m` can be returned to.
-    pub(crate) fn check(&self, m: &TerrainMark) -> Result<(), RollbackError> {
+    pub(super) fn check(&self, m: &TerrainMark) -> Result<(), RollbackError> {
         if m.origin != self.origin {
             return Err(RollbackError::NotOnTimeline { mark: m.pos });
         }
@@ -182,7 +189,7 @@ impl Journal {
     }
 
     /// Takes the newest entry if it is after `pos`.
-    pub(crate) fn pop_after(&mut self, pos: u64) -> Option<Entry> {
+    pub(super) fn pop_after(&mut self, pos: u64) -> Option<Entry> {
         if self.end() > pos {
             self.entries.pop_back().map(|e| e.1)
         } else {
@@ -191,7 +198,7 @@ impl Journal {
     }
 
     /// Forgets the entries before `m` (marks older than it become [`RollbackError::TooOld`]).
-    pub(crate) fn forget_before(&mut self, m: &TerrainMark) {
+    pub(super) fn forget_before(&mut self, m: &TerrainMark) {
         while self.start < m.pos {
             let Some((serial, _)) = self.entries.pop_front() else {
                 break;
@@ -202,7 +209,7 @@ impl Journal {
     }
 
     /// Forgets everything (after a rebuild, which rewrites the whole grid).
-    pub(crate) fn reset(&mut self) {
+    pub(super) fn reset(&mut self) {
         self.start = self.end();
         // A fresh serial: no mark from before the rebuild names it.
         self.start_serial = next_serial();
@@ -210,12 +217,12 @@ impl Journal {
     }
 
     /// Entries kept.
-    pub(crate) fn len(&self) -> usize {
+    pub(super) fn len(&self) -> usize {
         self.entries.len()
     }
 
     /// Events appended since the oldest kept entry: the ones an undo may pop.
-    pub(crate) fn appended_events(&self) -> usize {
+    pub(super) fn appended_events(&self) -> usize {
         self.entries
             .iter()
             .filter(|(_, e)| matches!(e, Entry::Event))
@@ -223,7 +230,7 @@ impl Journal {
     }
 
     /// The cell pre-images kept.
-    pub(crate) fn cell_images(&self) -> impl Iterator<Item = &Cell> {
+    pub(super) fn cell_images(&self) -> impl Iterator<Item = &Cell> {
         self.entries.iter().filter_map(|(_, e)| match e {
             Entry::Cell { before, .. } => Some(before),
             _ => None,
@@ -231,7 +238,7 @@ impl Journal {
     }
 
     /// The cell pre-images kept, to rewrite their lists when the log is compacted.
-    pub(crate) fn cell_images_mut(&mut self) -> impl Iterator<Item = &mut Cell> {
+    pub(super) fn cell_images_mut(&mut self) -> impl Iterator<Item = &mut Cell> {
         self.entries.iter_mut().filter_map(|(_, e)| match e {
             Entry::Cell { before, .. } => Some(before),
             _ => None,
