@@ -3,8 +3,10 @@
 //! timestamp queries ([`Timestamps`]), bounded waits ([`wait_for`]), the bounded pipeline cache
 //! ([`PipelineCache`]) and the one error type ([`GpuError`]).
 //!
-//! Nothing here knows about terrain or scenes: `craterfield-render2d` and `craterfield-march3d` build on it,
-//! and it depends on no other craterfield crate.
+//! Nothing here knows about terrain or scenes: `craterfield-render2d` and
+//! `craterfield-march3d` build on it, and it depends on no other craterfield crate.
+
+#![forbid(unsafe_code)]
 
 mod cache;
 mod context;

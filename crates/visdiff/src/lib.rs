@@ -16,6 +16,8 @@
 //! draws a report's per-pixel error as a picture, and [`golden`] keeps reference PNGs for
 //! tests.
 
+#![forbid(unsafe_code)]
+
 pub mod golden;
 mod heatmap;
 mod metrics;

@@ -3,22 +3,23 @@
 //!
 //! A backend is a zero-sized token type implementing [`Lanes`]: the operations of one SIMD
 //! register of `f32` lanes (and of the masks and `i32` lanes that go with it). The field's
-//! tape interpreter (`craterfield-field`'s `exec`) is written once, generic over `Lanes`, and
-//! instantiated per backend through [`run`]; the 3D tracer's lanes (`craterfield-march3d`)
-//! implement their own trait, with fused multiply-adds, on the same tokens. The tokens of the SIMD backends can only be made after runtime detection of
+//! tape interpreter (`craterfield-field`'s `exec`) is written once, generic over `Lanes`,
+//! and instantiated per backend through [`run`]; the 3D tracer's lanes
+//! (`craterfield-march3d`) implement their own trait, with fused multiply-adds, on the same
+//! tokens. The tokens of the SIMD backends can only be made after runtime detection of
 //! their instruction set, which is what makes their `unsafe` intrinsics sound; `unsafe`
 //! lives only in the per-architecture files.
 //!
 //! Every operation is exactly rounded or a bit operation, with the project's semantics
 //! (the determinism contract of `docs/ARCHITECTURE.md`): `min(a, b) = if a < b { a } else
-//! { b }`, `max` likewise, comparisons are ordered (false on NaN), `floor` keeps the sign of zero, and
-//! float-to-int conversion saturates with NaN giving 0 (Rust's `as i32`). No FMA, no
-//! estimates, no horizontal reductions: a lane computes what the scalar code computes.
+//! { b }`, `max` likewise, comparisons are ordered (false on NaN), `floor` keeps the sign of
+//! zero, and float-to-int conversion saturates with NaN giving 0 (Rust's `as i32`). No FMA,
+//! no estimates, no horizontal reductions: a lane computes what the scalar code computes.
 //!
 //! Choosing: this stack has code for every [`Backend`]; detection, the default choice
 //! ([`Backend::best`], capped by the environment variable `CRATERFIELD_BACKEND`) and the
-//! errors are in [`crate::backend`]. Building with the
-//! feature `force-scalar` makes the scalar backend the only one.
+//! errors are in [`crate::backend`]. Building with the feature `force-scalar` makes the
+//! scalar backend the only one.
 
 use crate::backend::{Backend, BackendError};
 
