@@ -40,4 +40,4 @@ pub use craterfield_render2d::{Camera, Reconstruction, RenderOptions, render_exa
 #[cfg(feature = "gpu")]
 pub use craterfield_gpu::{GpuContext, GpuError};
 #[cfg(feature = "gpu")]
-pub use craterfield_render2d::gpu::TerrainRenderer;
+pub use craterfield_render2d::gpu::{RenderError, TerrainRenderer};

@@ -14,8 +14,9 @@ use common::shade_steps::shade_steps;
 use craterfield::field2d::{Event, Graph, Level, Terrain};
 use craterfield::gpu::READBACK_FORMAT;
 use craterfield::gpu::{GpuContext, GpuError, Offscreen, Timestamps};
-use craterfield::render2d::gpu::TerrainRenderer;
+use craterfield::render2d::emit::EmitError;
 use craterfield::render2d::gpu::{Pipeline, render_to_image};
+use craterfield::render2d::gpu::{RenderError, TerrainRenderer};
 use craterfield::render2d::twin::{exact_field, render_refine, render_twin};
 use craterfield::render2d::{
     Camera, ExactRenderOptions, Reconstruction, RenderOptions, Scale, Upsample, render_exact,
@@ -89,7 +90,7 @@ fn gpu_image(
     cam: &Camera,
     options: &RenderOptions,
     pipeline: Pipeline,
-) -> Result<RgbaImage, GpuError> {
+) -> Result<RgbaImage, RenderError> {
     let mut r = TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())?;
     r.prepare(terrain, palette, cam)?;
     render_to_image(&r, cam.width, cam.height, pipeline)
@@ -483,7 +484,7 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
     )
     .map_err(|e| e.to_string())?;
     match render_to_image(&r, 64, 64, Pipeline::Reduced) {
-        Err(GpuError::NotPrepared) => {}
+        Err(RenderError::NotPrepared) => {}
         other => return Err(format!("render before prepare gave {:?}", other.map(|_| ())).into()),
     }
     for bad in [
@@ -492,7 +493,7 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
         camera(Vec2::ZERO, 1.0, 0, 64),
     ] {
         match r.prepare(&terrain, &pal, &bad) {
-            Err(GpuError::Camera(_)) => {}
+            Err(RenderError::Camera(_)) => {}
             other => return Err(format!("bad camera {bad:?} gave {:?}", other.map(|_| ())).into()),
         }
     }
@@ -502,7 +503,7 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
         wgpu::TextureFormat::Depth32Float,
         RenderOptions::default(),
     ) {
-        Err(GpuError::TargetFormat(_)) => {}
+        Err(RenderError::TargetFormat(_)) => {}
         other => return Err(format!("a depth target gave {:?}", other.map(|_| ())).into()),
     }
     // A level whose shader would inline 3^9 copies of a shared node: refused before the
@@ -522,7 +523,10 @@ fn errors_are_values(ctx: &GpuContext) -> TestResult {
     .map_err(|e| e.to_string())?;
     let dag_terrain = dag.terrain().map_err(|e| e.to_string())?;
     match r.prepare(&dag_terrain, &pal, &camera(Vec2::splat(512.0), 1.0, 64, 64)) {
-        Err(GpuError::ShaderTooLarge(why)) if why.contains("inlined statements") => {}
+        Err(RenderError::ShaderTooLarge(EmitError::TooLarge {
+            what: "inlined statements",
+            ..
+        })) => {}
         other => return Err(format!("a 3^9 DAG level gave {:?}", other.map(|_| ())).into()),
     }
     // Targets past the device's limits, of several aspect ratios: an error, never wgpu's

@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use craterfield::field2d::{Graph, Level, Terrain};
 use craterfield::gpu::{GpuContext, GpuError, Offscreen, READBACK_FORMAT, Timestamps};
-use craterfield::render2d::gpu::TerrainRenderer;
+use craterfield::render2d::gpu::{RenderError, TerrainRenderer};
 use craterfield::render2d::twin::{render_direct, render_refine, render_twin};
 use craterfield::render2d::{Camera, Reconstruction, RefineStats, RenderOptions, Scale, Upsample};
 use glam::Vec2;
@@ -94,14 +94,14 @@ const MODES: [(Reconstruction, Upsample, &str); 5] = [
 type Timestamp<'a> = Option<(&'a wgpu::QuerySet, u32)>;
 
 /// Records one frame's commands, with the timestamp pair to write if any.
-trait Record: FnMut(&mut wgpu::CommandEncoder, Timestamp<'_>) -> Result<(), GpuError> {}
-impl<T: FnMut(&mut wgpu::CommandEncoder, Timestamp<'_>) -> Result<(), GpuError>> Record for T {}
+trait Record: FnMut(&mut wgpu::CommandEncoder, Timestamp<'_>) -> Result<(), RenderError> {}
+impl<T: FnMut(&mut wgpu::CommandEncoder, Timestamp<'_>) -> Result<(), RenderError>> Record for T {}
 
 fn encode_frame(
     ctx: &GpuContext,
     record: &mut dyn Record,
     ts: Timestamp<'_>,
-) -> Result<wgpu::CommandBuffer, GpuError> {
+) -> Result<wgpu::CommandBuffer, RenderError> {
     let mut encoder = ctx
         .device
         .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
@@ -118,7 +118,11 @@ fn wait(ctx: &GpuContext) -> Result<(), GpuError> {
 
 /// Tails `frames` frames recorded by `record` after two warm-up frames: GPU timestamps when
 /// available, else wall time of submit + wait.
-fn time_frames(ctx: &GpuContext, frames: u32, mut record: impl Record) -> Result<Tails, GpuError> {
+fn time_frames(
+    ctx: &GpuContext,
+    frames: u32,
+    mut record: impl Record,
+) -> Result<Tails, RenderError> {
     let [times] = time_interleaved(ctx, frames, [&mut record])?;
     Ok(times)
 }
@@ -130,7 +134,7 @@ fn time_interleaved<const N: usize>(
     ctx: &GpuContext,
     frames: u32,
     mut records: [&mut dyn Record; N],
-) -> Result<[Tails; N], GpuError> {
+) -> Result<[Tails; N], RenderError> {
     for _ in 0..2 {
         for record in records.iter_mut() {
             ctx.queue.submit([encode_frame(ctx, *record, None)?]);
@@ -195,7 +199,7 @@ fn gpu_rows(
     palette: &[[u8; 3]],
     camera: &Camera,
     frames: u32,
-) -> Result<(Vec<Row>, Option<RefineStats>), GpuError> {
+) -> Result<(Vec<Row>, Option<RefineStats>), RenderError> {
     let target = Offscreen::new(&ctx.device, camera.width, camera.height)?;
     let format = READBACK_FORMAT;
     let mut rows = Vec::new();
@@ -245,8 +249,8 @@ fn sixteenth_pair(
     camera: &Camera,
     view: &wgpu::TextureView,
     frames: u32,
-) -> Result<(Tails, Tails, RefineStats), GpuError> {
-    let renderer = |reconstruction| -> Result<TerrainRenderer, GpuError> {
+) -> Result<(Tails, Tails, RefineStats), RenderError> {
+    let renderer = |reconstruction| -> Result<TerrainRenderer, RenderError> {
         let options = RenderOptions {
             scale: Scale::Sixteenth,
             reconstruction,

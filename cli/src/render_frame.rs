@@ -4,8 +4,8 @@
 use craterfield::field2d::{Graph, Terrain};
 use craterfield::gpu::GpuContext;
 use craterfield::gpu::READBACK_FORMAT;
-use craterfield::render2d::gpu::TerrainRenderer;
 use craterfield::render2d::gpu::{Pipeline, render_to_image};
+use craterfield::render2d::gpu::{RenderError, TerrainRenderer};
 use craterfield::render2d::twin::render_twin;
 use craterfield::render2d::{Camera, RenderOptions};
 use image::RgbaImage;
@@ -24,13 +24,15 @@ pub(crate) fn render(
     camera: &Camera,
     options: &RenderOptions,
 ) -> Result<Frame, String> {
-    let gpu = GpuContext::new().and_then(|ctx| {
-        let mut r =
-            TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())?;
-        r.prepare(terrain, palette, camera)?;
-        let image = render_to_image(&r, camera.width, camera.height, Pipeline::Reduced)?;
-        Ok((image, ctx.describe()))
-    });
+    let gpu = GpuContext::new()
+        .map_err(RenderError::from)
+        .and_then(|ctx| {
+            let mut r =
+                TerrainRenderer::new(&ctx.device, &ctx.queue, READBACK_FORMAT, options.clone())?;
+            r.prepare(terrain, palette, camera)?;
+            let image = render_to_image(&r, camera.width, camera.height, Pipeline::Reduced)?;
+            Ok((image, ctx.describe()))
+        });
     match gpu {
         Ok((image, adapter)) => Ok(Frame {
             image,

@@ -1,4 +1,8 @@
-//! The one error type of the GPU layer, shared by the 2D renderer and the 3D raymarcher.
+//! The one error type of the GPU layer, shared by the 2D renderer and the 3D raymarcher:
+//! failures of the adapter, the device and its limits, validation, readbacks and waits.
+//! What only one renderer can refuse (a camera, a shader past its budget, a mode the
+//! device cannot draw) is that renderer's own error (`RenderError` in the 2D renderer,
+//! `MarchGpuError` in the 3D one), which carries this one.
 
 use thiserror::Error;
 
@@ -22,13 +26,6 @@ pub enum GpuError {
         /// The device's limit.
         limit: u64,
     },
-    /// An emitted shader is past the budget a GPU compiler is handed (the emitter's
-    /// message says which part and by how much).
-    #[error("{0}")]
-    ShaderTooLarge(String),
-    /// The device lacks a texture format capability the renderer needs.
-    #[error("the device cannot {0}")]
-    Unsupported(String),
     /// A shader or pipeline failed validation on the device.
     #[error("GPU validation failed for {what}: {message}")]
     Validation {
@@ -40,15 +37,6 @@ pub enum GpuError {
     /// The device was lost or out of memory.
     #[error("the GPU device was lost or ran out of memory: {0}")]
     DeviceLost(String),
-    /// The camera or view cannot be rendered (the reason names the bad value).
-    #[error("camera: {0}")]
-    Camera(String),
-    /// `render` was called before a successful `prepare`.
-    #[error("render called before prepare")]
-    NotPrepared,
-    /// The render target format is not one the renderer can draw into.
-    #[error("unsupported render target format {0:?}")]
-    TargetFormat(wgpu::TextureFormat),
     /// Reading back pixels failed.
     #[error("reading the frame back failed: {0}")]
     Readback(String),

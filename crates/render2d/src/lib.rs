@@ -5,6 +5,8 @@
 //! and shaded. The reduced-scale pipeline (SDF pass at 1/16 scale, reconstruction, upsample
 //! and shade) is configured by `options`, laid out by `lattice`, and measured against it.
 
+#![forbid(unsafe_code)]
+
 pub mod emit;
 
 #[cfg(feature = "raster")]

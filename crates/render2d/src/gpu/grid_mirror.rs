@@ -5,8 +5,8 @@
 
 use wgpu::util::DeviceExt;
 
-use super::GpuError;
 use super::uniforms::{GpuCell, GpuEvent, GridFrame, encode_state};
+use super::{GpuError, RenderError};
 use craterfield_field::Event;
 use craterfield_field::Grid;
 use craterfield_field::Sdf;
@@ -147,7 +147,7 @@ impl GridMirror {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         terrain: &Terrain<F>,
-    ) -> Result<UploadStats, GpuError> {
+    ) -> Result<UploadStats, RenderError> {
         let grid = terrain.grid();
         let mut stats = UploadStats::default();
         let geometry = Geometry::of(grid);
@@ -161,19 +161,20 @@ impl GridMirror {
         Ok(stats)
     }
 
-    fn check_size(&self, what: &'static str, bytes: u64) -> Result<(), GpuError> {
+    fn check_size(&self, what: &'static str, bytes: u64) -> Result<(), RenderError> {
         if bytes > self.max_binding {
             return Err(GpuError::LimitsTooLow {
                 what,
                 needed: bytes,
                 limit: self.max_binding,
-            });
+            }
+            .into());
         }
         Ok(())
     }
 
     /// Fresh buffers sized for `grid`, nothing sent yet.
-    fn reset(&mut self, device: &wgpu::Device, grid: &Grid) -> Result<(), GpuError> {
+    fn reset(&mut self, device: &wgpu::Device, grid: &Grid) -> Result<(), RenderError> {
         let cells = grid.cell_count() as u64;
         self.check_size("grid cells (bytes)", cells * 16)?;
         self.cells = Storage::new(device, "craterfield cells", cells, 16);
@@ -190,7 +191,7 @@ impl GridMirror {
         queue: &wgpu::Queue,
         events: &[Event],
         stats: &mut UploadStats,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let mut first = self
             .sent_events
             .iter()
@@ -222,7 +223,7 @@ impl GridMirror {
         queue: &wgpu::Queue,
         grid: &Grid,
         stats: &mut UploadStats,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let dirty: Vec<usize> = grid.changed_since(&self.sent_revisions).collect();
         if dirty.is_empty() && !stats.reallocated {
             return Ok(());
@@ -257,7 +258,7 @@ impl GridMirror {
     }
 
     /// Lays every cell's slot out again with room to grow, in a buffer big enough for them.
-    fn repack(&mut self, device: &wgpu::Device, grid: &Grid) -> Result<(), GpuError> {
+    fn repack(&mut self, device: &wgpu::Device, grid: &Grid) -> Result<(), RenderError> {
         let mut next = 0u32;
         for (slot, cell) in self.slots.iter_mut().zip(grid.cells()) {
             let room = room_for(cell.events().len() as u32);
@@ -277,7 +278,7 @@ impl GridMirror {
         device: &wgpu::Device,
         grid: &Grid,
         stats: &mut UploadStats,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let words = 2 * brick_words(grid.brick_resolution());
         let needed = grid
             .cells()

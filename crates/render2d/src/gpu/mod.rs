@@ -6,16 +6,18 @@
 //! (explosion grid, camera, palette) and picks the compiled pipeline for the visible part of
 //! the level, and [`TerrainRenderer::render`] records the passes into the caller's command
 //! encoder, drawing into the caller's texture view (or [`TerrainRenderer::draw`] into the
-//! caller's own render pass after [`TerrainRenderer::encode_prepasses`]). Errors are values.
+//! caller's own render pass after [`TerrainRenderer::encode_prepasses`]). Errors are values
+//! of its own type, [`RenderError`], which carries the GPU layer's [`GpuError`] whole.
 //!
-//! Module map: `uniforms` (plain data shared with WGSL), `grid_mirror` (incremental
-//! uploads of the explosion grid), [`shaders`] (WGSL assembly), `pipelines` (layout entries
-//! and pipeline constructors), `renderer` (pipelines and passes), `refine` (mode refine's
-//! proof mirror, buffers and dispatches), `refine_passes` (its layouts, pipelines and bind
-//! groups), `readback` (a frame rendered to an image). The device plumbing it shares with
-//! the 3D raymarcher (headless context, offscreen targets, timestamps, the pipeline cache and
-//! [`GpuError`]) is [`craterfield_gpu`].
+//! Module map: `error` ([`RenderError`]), `uniforms` (plain data shared with WGSL),
+//! `grid_mirror` (incremental uploads of the explosion grid), [`shaders`] (WGSL assembly),
+//! `pipelines` (layout entries and pipeline constructors), `renderer` (pipelines and
+//! passes), `refine` (mode refine's proof mirror, buffers and dispatches), `refine_passes`
+//! (its layouts, pipelines and bind groups), `readback` (a frame rendered to an image). The
+//! device plumbing it shares with the 3D raymarcher (headless context, offscreen targets,
+//! timestamps, the pipeline cache and [`GpuError`]) is [`craterfield_gpu`].
 
+mod error;
 pub(crate) mod grid_mirror;
 pub(crate) mod pipelines;
 pub(crate) mod readback;
@@ -26,6 +28,7 @@ pub mod shaders;
 pub(crate) mod uniforms;
 
 use craterfield_gpu::GpuError;
+pub use error::{RenderError, Unsupported};
 pub use readback::{Pipeline, render_to_image};
 pub use renderer::{PrepareStats, TerrainRenderer};
 

@@ -1,7 +1,8 @@
 //! Bind group layout entries and pipeline constructors shared by the 2D render passes;
-//! shader and pipeline validation errors come back as [`GpuError`] values.
+//! shader and pipeline validation errors come back as values ([`GpuError::Validation`]
+//! in a [`RenderError`]).
 
-use super::GpuError;
+use super::{GpuError, RenderError};
 
 /// A uniform buffer at `binding`, visible to every stage.
 pub(super) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -97,12 +98,13 @@ fn validated<P>(
     label: &str,
     entry: &str,
     pipeline: P,
-) -> Result<P, GpuError> {
+) -> Result<P, RenderError> {
     match pollster::block_on(scope.pop()) {
         Some(e) => Err(GpuError::Validation {
             what: format!("{label} ({entry})"),
             message: e.to_string(),
-        }),
+        }
+        .into()),
         None => Ok(pipeline),
     }
 }
@@ -114,7 +116,7 @@ pub(super) fn compute_pipeline(
     source: &str,
     entry: &str,
     bind_layouts: &[&wgpu::BindGroupLayout],
-) -> Result<wgpu::ComputePipeline, GpuError> {
+) -> Result<wgpu::ComputePipeline, RenderError> {
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let (module, pipeline_layout) = module_and_layout(device, label, source, bind_layouts);
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -136,7 +138,7 @@ pub(super) fn fullscreen_pipeline(
     entry: &str,
     bind_layout: &wgpu::BindGroupLayout,
     format: wgpu::TextureFormat,
-) -> Result<wgpu::RenderPipeline, GpuError> {
+) -> Result<wgpu::RenderPipeline, RenderError> {
     render_pipeline(
         device,
         label,
@@ -155,7 +157,7 @@ pub(super) fn render_pipeline(
     entries: (&str, &str),
     bind_layouts: &[&wgpu::BindGroupLayout],
     format: wgpu::TextureFormat,
-) -> Result<wgpu::RenderPipeline, GpuError> {
+) -> Result<wgpu::RenderPipeline, RenderError> {
     let (vertex_entry, entry) = entries;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let (module, pipeline_layout) = module_and_layout(device, label, source, bind_layouts);

@@ -4,8 +4,9 @@
 
 use image::RgbaImage;
 
+use super::RenderError;
 use super::renderer::TerrainRenderer;
-use craterfield_gpu::{GpuError, Offscreen, READBACK_FORMAT};
+use craterfield_gpu::{Offscreen, READBACK_FORMAT};
 
 /// Which pipeline draws the frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,9 +24,9 @@ pub fn render_to_image(
     width: u32,
     height: u32,
     pipeline: Pipeline,
-) -> Result<RgbaImage, GpuError> {
+) -> Result<RgbaImage, RenderError> {
     if renderer.target_format() != READBACK_FORMAT {
-        return Err(GpuError::TargetFormat(renderer.target_format()));
+        return Err(RenderError::TargetFormat(renderer.target_format()));
     }
     let device = renderer.device();
     let target = Offscreen::new(device, width, height)?;
@@ -38,5 +39,5 @@ pub fn render_to_image(
     }
     target.encode_copy(&mut encoder);
     renderer.queue().submit([encoder.finish()]);
-    target.read(device)
+    Ok(target.read(device)?)
 }

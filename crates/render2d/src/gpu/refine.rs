@@ -14,9 +14,9 @@
 //! the colours by list slot. Pass 3 (`fs_refine`) draws the proven blocks and
 //! copies the exact ones, so every pixel that no proof covers is the exact render's.
 
-use super::GpuError;
 use super::grid_mirror::buffer_with;
 use super::uniforms::{CORNER_DISPATCH_OFFSET, GpuBlockState, GpuCellProof, GpuWork, WORK_BYTES};
+use super::{RenderError, Unsupported};
 use crate::twin::{REFINE_BLOCK as BLOCK, RefineStats};
 use craterfield_field::Sdf;
 use craterfield_field::Terrain;
@@ -68,7 +68,7 @@ impl ProofMirror {
         queue: &wgpu::Queue,
         terrain: &Terrain<F>,
         fingerprint: u64,
-    ) -> Result<bool, GpuError> {
+    ) -> Result<bool, RenderError> {
         let grid = terrain.grid();
         let cells = grid.cell_count();
         let identity = (fingerprint, grid.dims());
@@ -149,15 +149,19 @@ pub(crate) struct RefineTargets {
 
 impl RefineTargets {
     /// Buffers for an image of `width x height` pixels.
-    pub(crate) fn new(device: &wgpu::Device, width: u32, height: u32) -> Result<Self, GpuError> {
+    pub(crate) fn new(device: &wgpu::Device, width: u32, height: u32) -> Result<Self, RenderError> {
         let dims = block_dims(width, height);
         let blocks = u64::from(dims.0) * u64::from(dims.1);
         let state_bytes = std::mem::size_of::<GpuBlockState>() as u64;
         let corners = u64::from(dims.0 + 1) * u64::from(dims.1 + 1);
         if blocks >= 1 << OPEN_INDEX_BITS {
-            return Err(GpuError::Unsupported(format!(
-                "draw refine at {width}x{height}: its block list holds at most 2^28 blocks"
-            )));
+            return Err(RenderError::Unsupported {
+                what: Unsupported::RefineBlocks {
+                    width,
+                    height,
+                    index_bits: OPEN_INDEX_BITS,
+                },
+            });
         }
         let pixels_per_block = (BLOCK * BLOCK) as u64;
         for (what, bytes) in [
@@ -259,7 +263,7 @@ impl RefineTargets {
         queue: &wgpu::Queue,
         texels: u64,
         pixels: u64,
-    ) -> Result<RefineStats, GpuError> {
+    ) -> Result<RefineStats, RenderError> {
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("craterfield refine counters"),
         });

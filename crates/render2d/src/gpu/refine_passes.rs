@@ -2,7 +2,7 @@
 //! passes (`shaders/refine_*.wgsl`), which `RefineTargets::encode` records and
 //! `TerrainRenderer` draws.
 
-use super::GpuError;
+use super::RenderError;
 use super::pipelines::{buffer, buffer_entry, compute_pipeline, fullscreen_pipeline, layout};
 use super::pipelines::{texture_entry, uniform_entry};
 use super::refine::RefineTargets;
@@ -125,7 +125,7 @@ impl RefinePipelines {
         device: &wgpu::Device,
         l: &RefineLayouts,
         format: wgpu::TextureFormat,
-    ) -> Result<RefinePipelines, GpuError> {
+    ) -> Result<RefinePipelines, RenderError> {
         let classify_src = shaders::refine_classify_module();
         Ok(RefinePipelines {
             classify: compute_pipeline(
@@ -183,7 +183,7 @@ impl RefineFieldPipelines {
         field: &wgpu::BindGroupLayout,
         l: &RefineLayouts,
         base: &str,
-    ) -> Result<RefineFieldPipelines, GpuError> {
+    ) -> Result<RefineFieldPipelines, RenderError> {
         Ok(RefineFieldPipelines {
             corners: compute_pipeline(
                 device,

@@ -12,7 +12,6 @@ use craterfield_field::Terrain;
 use craterfield_gpu::PipelineCache;
 use glam::Vec2;
 
-use super::GpuError;
 use super::grid_mirror::{GridMirror, UploadStats, buffer_with};
 use super::pipelines::{fullscreen_pipeline, layout, storage_entry, texture_entry, uniform_entry};
 use super::refine::{ClassifyPasses, ProofMirror, RefineTargets, STORAGE_BUFFERS_NEEDED};
@@ -21,6 +20,7 @@ use super::refine_passes::{
 };
 use super::shaders;
 use super::uniforms::{FrameUniform, MAX_PALETTE, PaletteUniform};
+use super::{RenderError, Unsupported};
 use crate::twin::RefineStats;
 
 /// Format of the reduced-scale textures: distance, gradient and material (passes 1-2), or
@@ -152,7 +152,7 @@ impl TerrainRenderer {
         queue: &wgpu::Queue,
         target_format: wgpu::TextureFormat,
         options: RenderOptions,
-    ) -> Result<TerrainRenderer, GpuError> {
+    ) -> Result<TerrainRenderer, RenderError> {
         let features = target_format.guaranteed_format_features(device.features());
         let renderable = features
             .allowed_usages
@@ -161,7 +161,7 @@ impl TerrainRenderer {
             && target_format.has_color_aspect()
             && !target_format.is_depth_stencil_format())
         {
-            return Err(GpuError::TargetFormat(target_format));
+            return Err(RenderError::TargetFormat(target_format));
         }
         let layouts = Layouts::new(device);
         let reconstruct = shaders::reconstruct_module();
@@ -269,9 +269,8 @@ impl TerrainRenderer {
         terrain: &Terrain<Graph>,
         palette: &[[u8; 3]],
         camera: &Camera,
-    ) -> Result<PrepareStats, GpuError> {
-        let lattice = Lattice::new(camera, self.options.scale)
-            .map_err(|e| GpuError::Camera(e.to_string()))?;
+    ) -> Result<PrepareStats, RenderError> {
+        let lattice = Lattice::new(camera, self.options.scale)?;
         let refine = self.options.reconstruction == Reconstruction::Refine;
         if refine {
             self.check_refine_limits()?;
@@ -324,7 +323,7 @@ impl TerrainRenderer {
         fingerprint: u64,
         lattice: &Lattice,
         stats: &mut PrepareStats,
-    ) -> Result<u64, GpuError> {
+    ) -> Result<u64, RenderError> {
         let current = self
             .emitter
             .take()
@@ -347,9 +346,7 @@ impl TerrainRenderer {
             self.field_pipelines.clear();
         }
         let (_, hit) = self.field_pipelines.get_or_try_insert_with(plan.key, || {
-            let base = emitter
-                .emit_within(&plan, &ShaderBudget::default())
-                .map_err(|e| GpuError::ShaderTooLarge(e.to_string()))?;
+            let base = emitter.emit_within(&plan, &ShaderBudget::default())?;
             let sdf = fullscreen_pipeline(
                 device,
                 "craterfield sdf pass",
@@ -376,7 +373,7 @@ impl TerrainRenderer {
             } else {
                 None
             };
-            Ok::<_, GpuError>(FieldPipelines {
+            Ok::<_, RenderError>(FieldPipelines {
                 sdf,
                 direct,
                 refine,
@@ -387,19 +384,25 @@ impl TerrainRenderer {
     }
 
     /// Refuses mode refine on a device whose limits its passes exceed.
-    fn check_refine_limits(&self) -> Result<(), GpuError> {
+    fn check_refine_limits(&self) -> Result<(), RenderError> {
         let limits = self.device.limits();
         let have = limits.max_storage_buffers_per_shader_stage;
         if have < STORAGE_BUFFERS_NEEDED {
-            return Err(GpuError::Unsupported(format!(
-                "draw mode refine with {have} storage buffers per shader stage (it needs \
-                 {STORAGE_BUFFERS_NEEDED}; request them when creating the device)"
-            )));
+            return Err(RenderError::Unsupported {
+                what: Unsupported::StorageBuffers {
+                    have,
+                    needed: STORAGE_BUFFERS_NEEDED,
+                },
+            });
         }
-        if limits.max_compute_invocations_per_workgroup < 64 {
-            return Err(GpuError::Unsupported(
-                "draw mode refine without 64 compute invocations per workgroup".into(),
-            ));
+        let invocations = limits.max_compute_invocations_per_workgroup;
+        if invocations < 64 {
+            return Err(RenderError::Unsupported {
+                what: Unsupported::ComputeInvocations {
+                    have: invocations,
+                    needed: 64,
+                },
+            });
         }
         Ok(())
     }
@@ -411,7 +414,7 @@ impl TerrainRenderer {
         terrain: &Terrain<Graph>,
         fingerprint: u64,
         camera: &Camera,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         if self.refine_pipelines.is_none() {
             self.refine_pipelines = Some(RefinePipelines::new(
                 &self.device,
@@ -443,11 +446,14 @@ impl TerrainRenderer {
     /// What mode refine did in the last frame submitted (waits for the device): blocks
     /// proven and evaluated, pixels evaluated exactly, and field evaluations (texels,
     /// corner samples, exact pixels).
-    pub fn refine_stats(&self) -> Result<RefineStats, GpuError> {
+    pub fn refine_stats(&self) -> Result<RefineStats, RenderError> {
         let (prepared, _, _) = self.ready()?;
-        let targets = self.refine_targets.as_ref().ok_or(GpuError::NotPrepared)?;
+        let targets = self
+            .refine_targets
+            .as_ref()
+            .ok_or(RenderError::NotPrepared)?;
         if self.options.reconstruction != Reconstruction::Refine {
-            return Err(GpuError::NotPrepared);
+            return Err(RenderError::NotPrepared);
         }
         let l = &prepared.lattice;
         let c = &prepared.camera;
@@ -466,7 +472,7 @@ impl TerrainRenderer {
     }
 
     /// Allocates the reduced-scale textures for the largest lattice this image size needs.
-    fn ensure_lowres(&mut self, camera: &Camera, lattice: &Lattice) -> Result<(), GpuError> {
+    fn ensure_lowres(&mut self, camera: &Camera, lattice: &Lattice) -> Result<(), RenderError> {
         let (w, h) = Lattice::max_dims(camera.width, camera.height, self.options.scale);
         let (w, h) = (w.max(lattice.cols), h.max(lattice.rows));
         let fits = self
@@ -511,8 +517,8 @@ impl TerrainRenderer {
         Ok(())
     }
 
-    fn bind_groups(&self) -> Result<BindGroups, GpuError> {
-        let lowres = self.lowres.as_ref().ok_or(GpuError::NotPrepared)?;
+    fn bind_groups(&self) -> Result<BindGroups, RenderError> {
+        let lowres = self.lowres.as_ref().ok_or(RenderError::NotPrepared)?;
         let buffers = self.mirror.buffers();
         let mut field: Vec<wgpu::BindGroupEntry> = vec![wgpu::BindGroupEntry {
             binding: 0,
@@ -606,7 +612,7 @@ impl TerrainRenderer {
 
     /// Records passes 1 and 2 (into the renderer's own textures). Call before [`Self::draw`]
     /// when drawing into a render pass of your own.
-    pub fn encode_prepasses(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), GpuError> {
+    pub fn encode_prepasses(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), RenderError> {
         self.encode_prepasses_timed(encoder, None)
     }
 
@@ -614,12 +620,12 @@ impl TerrainRenderer {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         pass1_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let (prepared, bind, lowres) = self.ready()?;
         let pipelines = self
             .field_pipelines
             .peek(prepared.key)
-            .ok_or(GpuError::NotPrepared)?;
+            .ok_or(RenderError::NotPrepared)?;
         let l = &prepared.lattice;
         lowres_pass(
             encoder,
@@ -658,14 +664,14 @@ impl TerrainRenderer {
         encoder: &mut wgpu::CommandEncoder,
         field: &FieldPipelines,
         bind: &BindGroups,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let (Some(shared), Some(own), Some(binds), Some(targets)) = (
             &self.refine_pipelines,
             &field.refine,
             &bind.refine,
             &self.refine_targets,
         ) else {
-            return Err(GpuError::NotPrepared);
+            return Err(RenderError::NotPrepared);
         };
         targets.encode(
             encoder,
@@ -689,10 +695,10 @@ impl TerrainRenderer {
     }
 
     /// Pass 3 of mode refine: the proven blocks drawn, the exact ones copied.
-    fn draw_refine(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), GpuError> {
-        let bind = self.bind.as_ref().ok_or(GpuError::NotPrepared)?;
+    fn draw_refine(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), RenderError> {
+        let bind = self.bind.as_ref().ok_or(RenderError::NotPrepared)?;
         let (Some(shared), Some(binds)) = (&self.refine_pipelines, &bind.refine) else {
-            return Err(GpuError::NotPrepared);
+            return Err(RenderError::NotPrepared);
         };
         pass.set_pipeline(&shared.draw);
         pass.set_bind_group(0, &binds.draw, &[]);
@@ -702,7 +708,7 @@ impl TerrainRenderer {
 
     /// Records pass 3 into the caller's render pass, whose target must be the camera's size
     /// and this renderer's format.
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), GpuError> {
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), RenderError> {
         let (prepared, bind, _) = self.ready()?;
         let c = &prepared.camera;
         pass.set_viewport(0.0, 0.0, c.width as f32, c.height as f32, 0.0, 1.0);
@@ -720,7 +726,7 @@ impl TerrainRenderer {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         self.render_timed(encoder, target, None)
     }
 
@@ -731,7 +737,7 @@ impl TerrainRenderer {
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
         timestamps: Option<(&wgpu::QuerySet, u32)>,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let start = timestamps.map(|(set, i)| wgpu::RenderPassTimestampWrites {
             query_set: set,
             beginning_of_pass_write_index: Some(i),
@@ -758,7 +764,7 @@ impl TerrainRenderer {
         target: &wgpu::TextureView,
         query_set: &wgpu::QuerySet,
         index: u32,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let writes = |at: u32| wgpu::RenderPassTimestampWrites {
             query_set,
             beginning_of_pass_write_index: Some(at),
@@ -782,12 +788,12 @@ impl TerrainRenderer {
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
         timestamps: Option<(&wgpu::QuerySet, u32)>,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         let (prepared, bind, _) = self.ready()?;
         let pipelines = self
             .field_pipelines
             .peek(prepared.key)
-            .ok_or(GpuError::NotPrepared)?;
+            .ok_or(RenderError::NotPrepared)?;
         let writes = timestamps.map(|(set, i)| wgpu::RenderPassTimestampWrites {
             query_set: set,
             beginning_of_pass_write_index: Some(i),
@@ -802,10 +808,10 @@ impl TerrainRenderer {
         Ok(())
     }
 
-    fn ready(&self) -> Result<(&Prepared, &BindGroups, &LowResTargets), GpuError> {
+    fn ready(&self) -> Result<(&Prepared, &BindGroups, &LowResTargets), RenderError> {
         match (&self.prepared, &self.bind, &self.lowres) {
             (Some(p), Some(b), Some(l)) => Ok((p, b, l)),
-            _ => Err(GpuError::NotPrepared),
+            _ => Err(RenderError::NotPrepared),
         }
     }
 

@@ -20,7 +20,8 @@ fn validate(name: &str, source: &str) -> naga::Module {
 }
 
 fn level_fields() -> Vec<(String, String)> {
-    let root = env!("CARGO_MANIFEST_DIR");
+    // The example levels are the workspace's, two folders up.
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
     ["default", "caverns", "skyrealm"]
         .iter()
         .map(|name| {
