@@ -13,7 +13,8 @@
 //! `grid_mirror` (incremental uploads of the explosion grid), [`shaders`] (WGSL assembly),
 //! `pipelines` (layout entries and pipeline constructors), `renderer` (pipelines and
 //! passes), `refine` (mode refine's proof mirror, buffers and dispatches), `refine_passes`
-//! (its layouts, pipelines and bind groups), `readback` (a frame rendered to an image). The
+//! (its layouts, pipelines and bind groups), `refine_mode` (what the renderer holds of the
+//! mode across frames, and the calls it makes into it), `readback` (a frame rendered to an image). The
 //! device plumbing it shares with the 3D raymarcher (headless context, offscreen targets,
 //! timestamps, the pipeline cache and [`GpuError`]) is [`craterfield_gpu`].
 
@@ -22,6 +23,7 @@ pub(crate) mod grid_mirror;
 pub(crate) mod pipelines;
 pub(crate) mod readback;
 pub(crate) mod refine;
+pub(crate) mod refine_mode;
 pub(crate) mod refine_passes;
 pub(crate) mod renderer;
 pub mod shaders;

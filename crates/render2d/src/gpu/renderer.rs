@@ -12,15 +12,13 @@ use craterfield_field::Terrain;
 use craterfield_gpu::PipelineCache;
 use glam::Vec2;
 
+use super::RenderError;
 use super::grid_mirror::{GridMirror, UploadStats, buffer_with};
 use super::pipelines::{fullscreen_pipeline, layout, storage_entry, texture_entry, uniform_entry};
-use super::refine::{ClassifyPasses, ProofMirror, RefineTargets, STORAGE_BUFFERS_NEEDED};
-use super::refine_passes::{
-    RefineBinds, RefineFieldPipelines, RefineLayouts, RefinePipelines, RefineResources,
-};
+use super::refine_mode::{RefineDevice, RefineMode};
+use super::refine_passes::{RefineBinds, RefineFieldPipelines, RefineLayouts};
 use super::shaders;
 use super::uniforms::{FrameUniform, MAX_PALETTE, PaletteUniform};
-use super::{RenderError, Unsupported};
 use crate::twin::RefineStats;
 
 /// Format of the reduced-scale textures: distance, gradient and material (passes 1-2), or
@@ -98,9 +96,7 @@ pub struct TerrainRenderer {
     lowres: Option<LowResTargets>,
     bind: Option<BindGroups>,
     prepared: Option<Prepared>,
-    proofs: ProofMirror,
-    refine_pipelines: Option<RefinePipelines>,
-    refine_targets: Option<RefineTargets>,
+    refine: RefineMode,
 }
 
 impl Layouts {
@@ -236,9 +232,7 @@ impl TerrainRenderer {
             lowres: None,
             bind: None,
             prepared: None,
-            proofs: ProofMirror::new(device),
-            refine_pipelines: None,
-            refine_targets: None,
+            refine: RefineMode::new(device),
         })
     }
 
@@ -273,7 +267,7 @@ impl TerrainRenderer {
         let lattice = Lattice::new(camera, self.options.scale)?;
         let refine = self.options.reconstruction == Reconstruction::Refine;
         if refine {
-            self.check_refine_limits()?;
+            RefineMode::check_limits(&self.device)?;
         }
         // The level graph's content fingerprint: whether the emitter and the cell proofs
         // are current.
@@ -287,7 +281,15 @@ impl TerrainRenderer {
         }
         self.ensure_lowres(camera, &lattice)?;
         if refine {
-            self.ensure_refine(terrain, fingerprint, camera)?;
+            let gpu = RefineDevice {
+                device: &self.device,
+                queue: &self.queue,
+                layouts: &self.layouts.refine,
+                format: self.target_format,
+            };
+            if self.refine.ensure(gpu, terrain, fingerprint, camera)? {
+                self.bind = None;
+            }
         }
         self.write_palette(palette);
         let key = self.select_pipeline(terrain, fingerprint, &lattice, &mut stats)?;
@@ -383,86 +385,16 @@ impl TerrainRenderer {
         Ok(plan.key)
     }
 
-    /// Refuses mode refine on a device whose limits its passes exceed.
-    fn check_refine_limits(&self) -> Result<(), RenderError> {
-        let limits = self.device.limits();
-        let have = limits.max_storage_buffers_per_shader_stage;
-        if have < STORAGE_BUFFERS_NEEDED {
-            return Err(RenderError::Unsupported {
-                what: Unsupported::StorageBuffers {
-                    have,
-                    needed: STORAGE_BUFFERS_NEEDED,
-                },
-            });
-        }
-        let invocations = limits.max_compute_invocations_per_workgroup;
-        if invocations < 64 {
-            return Err(RenderError::Unsupported {
-                what: Unsupported::ComputeInvocations {
-                    have: invocations,
-                    needed: 64,
-                },
-            });
-        }
-        Ok(())
-    }
-
-    /// Compiles the level-independent refine passes once, syncs the cell proofs and sizes
-    /// the per-frame buffers for the camera.
-    fn ensure_refine(
-        &mut self,
-        terrain: &Terrain<Graph>,
-        fingerprint: u64,
-        camera: &Camera,
-    ) -> Result<(), RenderError> {
-        if self.refine_pipelines.is_none() {
-            self.refine_pipelines = Some(RefinePipelines::new(
-                &self.device,
-                &self.layouts.refine,
-                self.target_format,
-            )?);
-        }
-        if self
-            .proofs
-            .sync(&self.device, &self.queue, terrain, fingerprint)?
-        {
-            self.bind = None;
-        }
-        let fits = self
-            .refine_targets
-            .as_ref()
-            .is_some_and(|t| t.fits(camera.width, camera.height));
-        if !fits {
-            self.refine_targets = Some(RefineTargets::new(
-                &self.device,
-                camera.width,
-                camera.height,
-            )?);
-            self.bind = None;
-        }
-        Ok(())
-    }
-
     /// What mode refine did in the last frame submitted (waits for the device): blocks
     /// proven and evaluated, pixels evaluated exactly, and field evaluations (texels,
     /// corner samples, exact pixels).
     pub fn refine_stats(&self) -> Result<RefineStats, RenderError> {
         let (prepared, _, _) = self.ready()?;
-        let targets = self
-            .refine_targets
-            .as_ref()
-            .ok_or(RenderError::NotPrepared)?;
         if self.options.reconstruction != Reconstruction::Refine {
             return Err(RenderError::NotPrepared);
         }
-        let l = &prepared.lattice;
-        let c = &prepared.camera;
-        targets.stats(
-            &self.device,
-            &self.queue,
-            u64::from(l.cols) * u64::from(l.rows),
-            u64::from(c.width) * u64::from(c.height),
-        )
+        let (l, c) = (&prepared.lattice, &prepared.camera);
+        self.refine.stats(&self.device, &self.queue, l, c)
     }
 
     fn write_palette(&mut self, palette: &[[u8; 3]]) {
@@ -586,21 +518,13 @@ impl TerrainRenderer {
                 },
             ],
         });
-        let refine = match (&self.refine_targets, &self.refine_pipelines) {
-            (Some(targets), Some(_)) if self.options.reconstruction == Reconstruction::Refine => {
-                Some(RefineBinds::new(
-                    &self.device,
-                    &self.layouts.refine,
-                    targets,
-                    RefineResources {
-                        frame: &self.frame,
-                        palette: &self.palette,
-                        proofs: self.proofs.buffer(),
-                        texels: &lowres.texels,
-                    },
-                ))
-            }
-            _ => None,
+        let refine = if self.options.reconstruction == Reconstruction::Refine {
+            let refine = &self.layouts.refine;
+            let (frame, palette) = (&self.frame, &self.palette);
+            self.refine
+                .binds(&self.device, refine, frame, palette, &lowres.texels)
+        } else {
+            None
         };
         Ok(BindGroups {
             field,
@@ -637,7 +561,10 @@ impl TerrainRenderer {
             pass1_writes,
         );
         if self.options.reconstruction == Reconstruction::Refine {
-            return self.encode_refine(encoder, pipelines, bind);
+            let own = pipelines.refine.as_ref();
+            return self
+                .refine
+                .encode(encoder, own, bind.refine.as_ref(), &bind.field);
         }
         let second = match self.options.reconstruction {
             Reconstruction::Off | Reconstruction::Refine => None,
@@ -658,54 +585,6 @@ impl TerrainRenderer {
         Ok(())
     }
 
-    /// The refine classification after pass 1 (mode refine needs no pass 2).
-    fn encode_refine(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        field: &FieldPipelines,
-        bind: &BindGroups,
-    ) -> Result<(), RenderError> {
-        let (Some(shared), Some(own), Some(binds), Some(targets)) = (
-            &self.refine_pipelines,
-            &field.refine,
-            &bind.refine,
-            &self.refine_targets,
-        ) else {
-            return Err(RenderError::NotPrepared);
-        };
-        targets.encode(
-            encoder,
-            ClassifyPasses {
-                classify: &shared.classify,
-                open: &shared.open,
-                corner_args: &shared.corner_args,
-                corners: &own.corners,
-                blocks: &shared.blocks,
-                signs: &own.signs,
-                args: &shared.args,
-                exact: &own.exact,
-                classify_bind: &binds.classify,
-                field_bind: &bind.field,
-                corners_bind: &binds.corners,
-                signs_bind: &binds.signs,
-                exact_bind: &binds.exact,
-            },
-        );
-        Ok(())
-    }
-
-    /// Pass 3 of mode refine: the proven blocks drawn, the exact ones copied.
-    fn draw_refine(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), RenderError> {
-        let bind = self.bind.as_ref().ok_or(RenderError::NotPrepared)?;
-        let (Some(shared), Some(binds)) = (&self.refine_pipelines, &bind.refine) else {
-            return Err(RenderError::NotPrepared);
-        };
-        pass.set_pipeline(&shared.draw);
-        pass.set_bind_group(0, &binds.draw, &[]);
-        pass.draw(0..3, 0..1);
-        Ok(())
-    }
-
     /// Records pass 3 into the caller's render pass, whose target must be the camera's size
     /// and this renderer's format.
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), RenderError> {
@@ -713,7 +592,7 @@ impl TerrainRenderer {
         let c = &prepared.camera;
         pass.set_viewport(0.0, 0.0, c.width as f32, c.height as f32, 0.0, 1.0);
         if self.options.reconstruction == Reconstruction::Refine {
-            return self.draw_refine(pass);
+            return self.refine.draw(pass, bind.refine.as_ref());
         }
         pass.set_pipeline(&self.upsample[upsample_index(&self.options)]);
         pass.set_bind_group(0, &bind.upsample, &[]);
