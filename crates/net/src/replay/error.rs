@@ -16,7 +16,7 @@ pub enum VerifyError {
         /// The hash of the level given.
         found: u64,
     },
-    /// The replay breaks an invariant of [`Replay`] (see [`Replay::validate`]).
+    /// The replay breaks an invariant of [`Replay`](super::Replay) (see [`Replay::validate`](super::Replay::validate)).
     #[error("the replay is inconsistent: {detail}")]
     Inconsistent {
         /// Which invariant, and where.

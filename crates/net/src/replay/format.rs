@@ -13,7 +13,7 @@ use crate::codec::{self, DecodeLimits, Reader, Writer};
 use crate::error::{DecodeError, DecodeErrorKind, EncodeError};
 
 impl Replay {
-    /// Encodes the replay (see the [module documentation](self) for the layout), refusing
+    /// Encodes the replay (see the [module documentation](super) for the layout), refusing
     /// what [`Replay::decode`] would refuse: what one side writes the other reads.
     ///
     /// Fails with [`EncodeError::Inconsistent`] where the public fields break the

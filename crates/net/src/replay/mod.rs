@@ -72,7 +72,7 @@
 //! every byte), so a cut file reports `Truncated` in the section where it ends; then the
 //! CRC-32 is checked; then the sections are parsed, still bounds-checking everything
 //! (a valid checksum proves nothing about a hostile file). Settings and every input are
-//! validated, and every count is held to [`DecodeLimits`] before anything is allocated.
+//! validated, and every count is held to [`DecodeLimits`](crate::DecodeLimits) before anything is allocated.
 
 use serde::{Deserialize, Serialize};
 

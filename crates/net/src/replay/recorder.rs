@@ -109,7 +109,7 @@ impl Recorder {
         Ok(())
     }
 
-    /// Records an edit: a terrain event applied with [`World::apply_event`] before the
+    /// Records an edit: a terrain event applied with [`World::apply_event`](craterfield_sim::World::apply_event) before the
     /// step that [`Recorder::record`] records next, so `e.tick` must be
     /// [`Recorder::ticks`]. Errors, recording nothing, for an invalid event, another tick,
     /// or past the default [`DecodeLimits`]' `max_events` edits.
