@@ -32,11 +32,10 @@ pub const MAX_LEVEL_BYTES: usize = 16 * 1024 * 1024;
 /// Largest accepted world coordinate magnitude (keeps quantized event coordinates exact).
 pub(crate) const MAX_WORLD_COORDINATE: f32 = 65_536.0;
 
-/// The default level, compiled into the library.
-pub const DEFAULT_LEVEL_RON: &str = include_str!(concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../levels/default.ron"
-));
+/// The default level, compiled into the library. The crate holds the file, so it builds on
+/// its own; the workspace's `levels/default.ron` is a link to it.
+pub const DEFAULT_LEVEL_RON: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/levels/default.ron"));
 
 /// World rectangle of a level.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -121,7 +121,8 @@ impl RefineMode {
         palette: &wgpu::Buffer,
         texels: &wgpu::TextureView,
     ) -> Option<RefineBinds> {
-        let (targets, _) = (self.targets.as_ref()?, self.pipelines.as_ref()?);
+        self.pipelines.as_ref()?;
+        let targets = self.targets.as_ref()?;
         Some(RefineBinds::new(
             device,
             layouts,
