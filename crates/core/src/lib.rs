@@ -9,8 +9,10 @@
 //!   architecture. The 3D tracer's fused multiply-add lanes extend these tokens in
 //!   `craterfield-march3d`; nothing here fuses, so the field cannot reach an FMA.
 //! * [`files`]: bounded reads of files a user or a peer hands over.
+//! * [`threads`]: thread counts resolved to what the target can run (one on WebAssembly).
 
 pub mod backend;
 pub mod det;
 pub mod files;
 pub mod simd;
+pub mod threads;

@@ -37,10 +37,7 @@ pub fn render_exact<F: Sdf + Sync>(
     let (w, h) = (camera.width, camera.height);
     let mut img = RgbaImage::new(w, h);
     let tiles_y = h.div_ceil(TILE);
-    let threads = match opts.threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    };
+    let threads = craterfield_core::threads::resolve(opts.threads);
     let row_bytes = (w * 4) as usize;
     let band_bytes = row_bytes * TILE as usize;
     let bands: Vec<(u32, &mut [u8])> = img
@@ -60,6 +57,12 @@ pub fn render_exact<F: Sdf + Sync>(
         camera,
         shader: Shader::new(&opts.shade, camera.height),
     };
+    if threads == 1 {
+        for (band, bytes) in groups.into_iter().flatten() {
+            painter.band(band, bytes);
+        }
+        return Ok(img);
+    }
     std::thread::scope(|s| {
         for group in groups {
             let painter = &painter;

@@ -220,11 +220,12 @@ pub fn exact_distances<F: Sdf + Sync>(
     camera.validate()?;
     let (w, h) = (camera.width as usize, camera.height as usize);
     let mut out = vec![0.0f32; w * h];
-    let threads = match threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    };
+    let threads = craterfield_core::threads::resolve(threads);
     let rows_per_chunk = h.div_ceil(threads).max(1);
+    if threads == 1 {
+        exact_rows(terrain, camera, 0, &mut out)?;
+        return Ok(out);
+    }
     let results: Vec<Result<(), EvalError>> = std::thread::scope(|s| {
         let workers: Vec<_> = out
             .chunks_mut(rows_per_chunk * w)

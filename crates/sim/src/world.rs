@@ -739,7 +739,7 @@ fn sample_all(
     threads: usize,
 ) -> Result<(), EvalError> {
     const MIN_CHUNK: usize = 256;
-    let chunks = threads.min(points.len() / MIN_CHUNK);
+    let chunks = craterfield_core::threads::spawnable(threads).min(points.len() / MIN_CHUNK);
     if chunks <= 1 {
         return terrain.samples(points, out);
     }

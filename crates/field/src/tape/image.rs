@@ -162,6 +162,7 @@ fn in_threads<T: Send>(
     threads: usize,
     work: impl Fn(Vec<T>) -> Result<ImageStats, ImageError> + Sync,
 ) -> Result<ImageStats, ImageError> {
+    let threads = craterfield_core::threads::spawnable(threads).max(1);
     let mut shares: Vec<Vec<T>> = (0..threads).map(|_| Vec::new()).collect();
     for (k, item) in items.into_iter().enumerate() {
         shares[k % threads].push(item);

@@ -324,12 +324,7 @@ where
             tiles.push((x, y, (x + tile).min(w), (y + tile).min(h)));
         }
     }
-    let threads = if threads == 0 {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    } else {
-        threads
-    }
-    .clamp(1, tiles.len());
+    let threads = craterfield_core::threads::resolve(threads).clamp(1, tiles.len().max(1));
     let next = AtomicUsize::new(0);
     let out = Mutex::new(vec![0u8; w as usize * h as usize * 4]);
     let worker = || Worker {

@@ -7,10 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The thread count a `threads` argument asks for: 0 means every core.
 pub(super) fn resolve(threads: usize) -> usize {
-    match threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    }
+    craterfield_core::threads::resolve(threads)
 }
 
 /// Runs `work` on every unit, on up to `threads` threads (0: all cores), each thread with
