@@ -271,7 +271,7 @@ fn em_hp0(px: vec3<f32>, py: vec3<f32>) -> vec3<f32> {
     }
     let reach = abs(y - ground);
     // The largest finite f32 stands in for the CPU's infinity: every segment is nearer.
-    var d2 = vec3<f32>(3.4028235e38f, 0.0, 0.0);
+    var d2 = vec3<f32>(3.4028234663852886e38f, 0.0, 0.0);
     if (x < 0.0f) {
         let dy = em_off(py, -610.6f);
         d2 = em_mul(dy, dy);

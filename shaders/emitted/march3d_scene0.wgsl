@@ -6,7 +6,7 @@ fn em_f32_bits(bits: u32) -> f32 {
 const em_max_steps: u32 = 0xbb8u;
 const em_hit: f32 = 5e-6f;
 const em_hit_per_t: f32 = 0.0f;
-const em_far: f32 = 3.4028235e38f;
+const em_far: f32 = 3.4028234663852886e38f;
 const em_escape: f32 = 100.0f;
 const em_step_factor: f32 = 1.0f;
 const em_ray_offset: f32 = 0.001f;

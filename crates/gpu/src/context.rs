@@ -19,12 +19,20 @@ pub struct GpuContext {
 impl GpuContext {
     /// Requests the default adapter and a device on it, with timestamp queries when offered.
     /// wgpu's environment variables choose the backends (`WGPU_BACKEND=vulkan,gl`, ...).
+    /// Native targets only: in a browser, await [`Self::new_async`].
+    #[cfg(not(target_family = "wasm"))]
     pub fn new() -> Result<GpuContext, GpuError> {
+        pollster::block_on(GpuContext::new_async())
+    }
+
+    /// [`Self::new`] for every target (in a browser, the page's WebGPU adapter).
+    pub async fn new_async() -> Result<GpuContext, GpuError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter =
-            pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
-                .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions::default())
+            .await
+            .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let required_features = if timestamps {
             wgpu::Features::TIMESTAMP_QUERY
@@ -37,7 +45,9 @@ impl GpuContext {
             required_limits: device_limits(&adapter.limits()),
             ..wgpu::DeviceDescriptor::default()
         };
-        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
+        let (device, queue) = adapter
+            .request_device(&descriptor)
+            .await
             .map_err(|e| GpuError::RequestDevice(e.to_string()))?;
         Ok(GpuContext {
             device,

@@ -1,9 +1,13 @@
 //! Offscreen targets and buffer readback: a frame rendered into a texture and copied back
 //! to the CPU as an image, for tools, tests and GPU-vs-CPU comparisons.
 
+use std::sync::{Arc, Mutex};
+use std::task::{Poll, Waker};
+
 use image::RgbaImage;
 
 use super::GpuError;
+#[cfg(not(target_family = "wasm"))]
 use super::wait::{DEFAULT_WAIT, wait_for};
 
 /// Format of readback targets (bytes map one to one onto image pixels).
@@ -106,15 +110,31 @@ impl Offscreen {
         );
     }
 
-    /// Maps the buffer (after the copy was submitted) and returns the pixels.
+    /// Maps the buffer (after the copy was submitted) and returns the pixels. Native
+    /// targets only: a browser answers the mapping from its event loop, so it uses
+    /// [`Self::read_async`].
+    #[cfg(not(target_family = "wasm"))]
     pub fn read(&self, device: &wgpu::Device) -> Result<RgbaImage, GpuError> {
+        let pixels = map_read(device, &self.buffer, |data| self.unpad(data))?;
+        self.image(pixels)
+    }
+
+    /// [`Self::read`] for every target, awaiting the mapping.
+    pub async fn read_async(&self, device: &wgpu::Device) -> Result<RgbaImage, GpuError> {
+        let pixels = map_read_async(device, &self.buffer, |data| self.unpad(data)).await?;
+        self.image(pixels)
+    }
+
+    /// The rows of the mapped buffer without their padding.
+    fn unpad(&self, data: &[u8]) -> Vec<u8> {
         let (width, row) = (self.width as usize * 4, self.padded_row as usize);
-        let pixels = map_read(device, &self.buffer, |data| {
-            data.chunks(row)
-                .flat_map(|line| &line[..width])
-                .copied()
-                .collect::<Vec<u8>>()
-        })?;
+        data.chunks(row)
+            .flat_map(|line| &line[..width])
+            .copied()
+            .collect()
+    }
+
+    fn image(&self, pixels: Vec<u8>) -> Result<RgbaImage, GpuError> {
         RgbaImage::from_raw(self.width, self.height, pixels)
             .ok_or_else(|| GpuError::Readback("pixel count does not match the size".into()))
     }
@@ -122,22 +142,56 @@ impl Offscreen {
 
 /// Maps a `MAP_READ` `buffer` for reading (after the commands filling it were submitted),
 /// waits for the device (at most [`DEFAULT_WAIT`]), hands the bytes to `read` and unmaps.
+/// Native targets only (see [`map_read_async`]).
+#[cfg(not(target_family = "wasm"))]
 pub fn map_read<T>(
     device: &wgpu::Device,
     buffer: &wgpu::Buffer,
     read: impl FnOnce(&[u8]) -> T,
 ) -> Result<T, GpuError> {
+    // Never blocks past the wait: natively the future is ready once the device is.
+    pollster::block_on(map_read_async(device, buffer, read))
+}
+
+/// [`map_read`] for every target: on a native device it waits as `map_read` does (at most
+/// [`DEFAULT_WAIT`]); in a browser it awaits the mapping, which the page's event loop
+/// completes.
+pub async fn map_read_async<T>(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    read: impl FnOnce(&[u8]) -> T,
+) -> Result<T, GpuError> {
     let slice = buffer.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
+    let slot = Arc::new(Mutex::new(MapSlot::default()));
+    let filled = slot.clone();
     slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
+        let mut s = filled.lock().unwrap_or_else(|e| e.into_inner());
+        s.result = Some(r);
+        if let Some(waker) = s.waker.take() {
+            waker.wake();
+        }
     });
+    #[cfg(not(target_family = "wasm"))]
     wait_for(device, None, DEFAULT_WAIT, "readback")?;
-    // The wait has run the mapping callback: `try_recv`, so a missing callback is an error
-    // rather than a block.
-    rx.try_recv()
-        .map_err(|e| GpuError::Readback(e.to_string()))?
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    #[cfg(target_family = "wasm")]
+    let _ = device;
+    let mapped = std::future::poll_fn(|cx| {
+        let mut s = slot.lock().unwrap_or_else(|e| e.into_inner());
+        match s.result.take() {
+            Some(r) => Poll::Ready(r.map_err(|e| GpuError::Readback(e.to_string()))),
+            // The wait has run the mapping's callback: a missing result is an error rather
+            // than a future that never ends.
+            None if cfg!(not(target_family = "wasm")) => Poll::Ready(Err(GpuError::Readback(
+                "the device finished without completing the mapping".into(),
+            ))),
+            None => {
+                s.waker = Some(cx.waker().clone());
+                Poll::Pending
+            }
+        }
+    })
+    .await;
+    mapped?;
     let out = {
         let data = slice
             .get_mapped_range()
@@ -146,4 +200,11 @@ pub fn map_read<T>(
     };
     buffer.unmap();
     Ok(out)
+}
+
+/// Where a mapping's callback leaves its result for the future awaiting it.
+#[derive(Default)]
+struct MapSlot {
+    result: Option<Result<(), wgpu::BufferAsyncError>>,
+    waker: Option<Waker>,
 }

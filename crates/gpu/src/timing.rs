@@ -2,7 +2,9 @@
 //! `TIMESTAMP_QUERY`), for benchmarks. Reading results waits for the GPU.
 
 use super::GpuError;
+#[cfg(not(target_family = "wasm"))]
 use super::map_read;
+use super::map_read_async;
 
 /// A set of timestamp pairs and the buffers to resolve and read them.
 pub struct Timestamps {
@@ -59,26 +61,44 @@ impl Timestamps {
     }
 
     /// Every timestamp's time in milliseconds after the first one, after the resolve was
-    /// submitted (for passes timed back to back, where the gaps matter too).
+    /// submitted (for passes timed back to back, where the gaps matter too). Native
+    /// targets only (see [`Self::read_marks_ms_async`]).
+    #[cfg(not(target_family = "wasm"))]
     pub fn read_marks_ms(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
-        map_read(device, &self.read, |data| {
-            let ticks: &[u64] = bytemuck::cast_slice(data);
-            let first = ticks.first().copied().unwrap_or(0);
-            ticks
-                .iter()
-                .map(|t| t.wrapping_sub(first) as f64 * self.period_ns / 1.0e6)
-                .collect()
-        })
+        map_read(device, &self.read, |data| self.marks_ms(data))
     }
 
-    /// Milliseconds of every pair, after the resolve was submitted.
+    /// Milliseconds of every pair, after the resolve was submitted. Native targets only
+    /// (see [`Self::read_ms_async`]).
+    #[cfg(not(target_family = "wasm"))]
     pub fn read_ms(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
-        map_read(device, &self.read, |data| {
-            let ticks: &[u64] = bytemuck::cast_slice(data);
-            ticks
-                .chunks(2)
-                .map(|p| p[1].wrapping_sub(p[0]) as f64 * self.period_ns / 1.0e6)
-                .collect()
-        })
+        map_read(device, &self.read, |data| self.pairs_ms(data))
+    }
+
+    /// [`Self::read_marks_ms`] for every target, awaiting the mapping.
+    pub async fn read_marks_ms_async(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
+        map_read_async(device, &self.read, |data| self.marks_ms(data)).await
+    }
+
+    /// [`Self::read_ms`] for every target, awaiting the mapping.
+    pub async fn read_ms_async(&self, device: &wgpu::Device) -> Result<Vec<f64>, GpuError> {
+        map_read_async(device, &self.read, |data| self.pairs_ms(data)).await
+    }
+
+    fn marks_ms(&self, data: &[u8]) -> Vec<f64> {
+        let ticks: &[u64] = bytemuck::cast_slice(data);
+        let first = ticks.first().copied().unwrap_or(0);
+        ticks
+            .iter()
+            .map(|t| t.wrapping_sub(first) as f64 * self.period_ns / 1.0e6)
+            .collect()
+    }
+
+    fn pairs_ms(&self, data: &[u8]) -> Vec<f64> {
+        let ticks: &[u64] = bytemuck::cast_slice(data);
+        ticks
+            .chunks(2)
+            .map(|p| p[1].wrapping_sub(p[0]) as f64 * self.period_ns / 1.0e6)
+            .collect()
     }
 }

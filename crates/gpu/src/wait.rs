@@ -4,6 +4,7 @@
 
 use std::time::Duration;
 
+#[cfg(not(target_family = "wasm"))]
 use super::GpuError;
 
 /// How long a wait lasts by default: ten minutes. That is far longer than a frame takes on a
@@ -13,7 +14,9 @@ use super::GpuError;
 pub const DEFAULT_WAIT: Duration = Duration::from_secs(600);
 
 /// Waits until submission `index` has finished (every submission when `None`), for at most
-/// `limit`; `what` names the work in the error.
+/// `limit`; `what` names the work in the error. Native targets only: a browser's WebGPU
+/// cannot be waited for, only awaited (its mappings, see `map_read_async`).
+#[cfg(not(target_family = "wasm"))]
 pub fn wait_for(
     device: &wgpu::Device,
     index: Option<wgpu::SubmissionIndex>,

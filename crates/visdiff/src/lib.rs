@@ -15,10 +15,16 @@
 //! that were exceeded and [`DiffReport::passed`] says whether there were none. [`heatmap`]
 //! draws a report's per-pixel error as a picture, and [`golden`] keeps reference PNGs for
 //! tests.
+//!
+//! On WebAssembly FLIP is not available (its C++ does not build for the browser): there
+//! [`compare`] measures the pixel statistics alone ([`DiffReport::flip_measured`] is
+//! false), and the heat-maps and golden files, which are files on disk, are not built.
 
 #![forbid(unsafe_code)]
 
+#[cfg(not(target_family = "wasm"))]
 pub mod golden;
+#[cfg(not(target_family = "wasm"))]
 mod heatmap;
 mod metrics;
 mod perceptual;
@@ -30,7 +36,9 @@ use image::RgbaImage;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+#[cfg(not(target_family = "wasm"))]
 pub use golden::{GoldenError, GoldenMode, UPDATE_GOLDEN_ENV, check_golden, check_golden_with};
+#[cfg(not(target_family = "wasm"))]
 pub use heatmap::{HeatSource, heatmap};
 pub use report::{DiffReport, Failure, Metric};
 
@@ -149,7 +157,7 @@ pub fn compare(
     // Pictures whose colours are identical have a zero perceptual error everywhere; skip the
     // (costly) filter passes then.
     let flip = if metrics::rgb_equal(a, b) {
-        vec![0.0; errors.len()]
+        Some(vec![0.0; errors.len()])
     } else {
         perceptual::flip_map(a, b, options.pixels_per_degree)
     };
@@ -316,7 +324,7 @@ mod tests {
         let stats = metrics::PixelStats::of(&errors, 2, 99.0);
         let mut flip = vec![0.0f32; 16];
         flip[3] = f32::NAN;
-        let report = DiffReport::new((4, 4), errors, stats, flip, &DiffOptions::default());
+        let report = DiffReport::new((4, 4), errors, stats, Some(flip), &DiffOptions::default());
         assert!(report.flip.is_nan());
         assert!(!report.passed(), "a NaN FLIP score passed");
         assert!(

@@ -7,21 +7,28 @@
 //! colours only, so alpha is dropped here (the pixel-wise metrics still see it).
 
 use image::RgbaImage;
-use nv_flip::{FlipImageRgb8, flip};
 
 /// FLIP's per-pixel error of `test` against `reference` (same size, checked by the caller),
-/// row-major.
+/// row-major; `None` on WebAssembly, where FLIP does not build.
+#[cfg(not(target_family = "wasm"))]
 pub(crate) fn flip_map(
     reference: &RgbaImage,
     test: &RgbaImage,
     pixels_per_degree: f32,
-) -> Vec<f32> {
+) -> Option<Vec<f32>> {
+    use nv_flip::{FlipImageRgb8, flip};
     let (w, h) = reference.dimensions();
     let reference = FlipImageRgb8::with_data(w, h, &rgb_bytes(reference));
     let test = FlipImageRgb8::with_data(w, h, &rgb_bytes(test));
-    flip(reference, test, pixels_per_degree).to_vec()
+    Some(flip(reference, test, pixels_per_degree).to_vec())
 }
 
+#[cfg(target_family = "wasm")]
+pub(crate) fn flip_map(_: &RgbaImage, _: &RgbaImage, _: f32) -> Option<Vec<f32>> {
+    None
+}
+
+#[cfg(not(target_family = "wasm"))]
 fn rgb_bytes(image: &RgbaImage) -> Vec<u8> {
     image
         .as_raw()

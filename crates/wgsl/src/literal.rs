@@ -35,15 +35,26 @@ pub enum WgslError {
     NonFinite(f32),
 }
 
-/// The exact WGSL literal of a finite `f32`, e.g. `1.5f`, `-0.0f`, `1e-7f`, `3.4028235e38f`.
+/// The exact WGSL literal of a finite `f32`, e.g. `1.5f`, `-0.0f`, `1e-7f`,
+/// `3.4028234663852886e38f`.
 pub fn f32_literal(v: f32) -> Result<String, WgslError> {
     if !v.is_finite() {
         return Err(WgslError::NonFinite(v));
     }
     // `{:?}` is the shortest round-tripping decimal, in scientific form for very large and
-    // very small magnitudes; every form it prints ("1.5", "1e-7", "3.4028235e38") is a WGSL
-    // decimal float literal once suffixed.
-    Ok(format!("{v:?}f"))
+    // very small magnitudes; every form it prints ("1.5", "1e-7") is a WGSL decimal float
+    // literal once suffixed. A browser's WGSL compiler (Tint) reads a literal as a double and
+    // refuses one beyond the range of `f32`, which the shortest decimal of `f32::MAX`
+    // (3.4028235e38) is: such a value is printed with the digits of its exact double.
+    let shortest = format!("{v:?}");
+    let beyond_range = shortest
+        .parse::<f64>()
+        .is_ok_and(|d| d.abs() > f64::from(f32::MAX));
+    Ok(if beyond_range {
+        format!("{:?}f", f64::from(v))
+    } else {
+        format!("{shortest}f")
+    })
 }
 
 /// An `f32` as a WGSL expression: its literal when finite, otherwise a call to
@@ -106,7 +117,23 @@ mod tests {
         assert_eq!(f32_literal(-0.0).unwrap(), "-0.0f");
         assert_eq!(f32_literal(0.0).unwrap(), "0.0f");
         assert_eq!(f32_literal(1e-7).unwrap(), "1e-7f");
-        assert_eq!(f32_literal(f32::MAX).unwrap(), "3.4028235e38f");
+        // Within f32's range as a double (a browser's compiler refuses 3.4028235e38).
+        assert_eq!(f32_literal(f32::MAX).unwrap(), "3.4028234663852886e38f");
+        assert_eq!(f32_literal(-f32::MAX).unwrap(), "-3.4028234663852886e38f");
+        assert_eq!(f32_literal(3.4028233e38).unwrap(), "3.4028233e38f");
+        for v in [f32::MAX, -f32::MAX, f32::MIN_POSITIVE, 1e-45, 3.4028233e38] {
+            let text = f32_literal(v).unwrap();
+            let digits = text.trim_end_matches('f');
+            assert_eq!(
+                digits.parse::<f32>().unwrap().to_bits(),
+                v.to_bits(),
+                "{text}"
+            );
+            assert!(
+                digits.parse::<f64>().unwrap().abs() <= f64::from(f32::MAX),
+                "{text}"
+            );
+        }
         assert_eq!(
             f32_literal(f32::INFINITY),
             Err(WgslError::NonFinite(f32::INFINITY))

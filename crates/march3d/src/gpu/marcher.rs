@@ -1,13 +1,17 @@
 //! [`Marcher`]: the compute pipelines of emitted plans, the camera uniform, the readback
 //! target, and the pass that marches every pixel.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+#[cfg(not(target_family = "wasm"))]
+use std::time::Instant;
 
 use crate::codegen3d::{MARCH3D_BUDGET, march_inlined_statements, march_wgsl};
 use crate::plan3d::{Camera3d, Plan};
+use craterfield_gpu::DEFAULT_WAIT;
 use craterfield_gpu::PipelineCache;
 use craterfield_gpu::Timestamps;
-use craterfield_gpu::{DEFAULT_WAIT, wait_for};
+#[cfg(not(target_family = "wasm"))]
+use craterfield_gpu::wait_for;
 use craterfield_gpu::{Offscreen, READBACK_FORMAT};
 use craterfield_wgsl::{EmitError, ShaderBudget};
 
@@ -175,8 +179,54 @@ impl Marcher {
         Ok(())
     }
 
+    /// [`Self::new`] once the device has validated what it made: the constructor for a
+    /// browser, where that answer comes from the page's event loop.
+    pub async fn new_async(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Marcher, MarchGpuError> {
+        let marcher = Marcher::new(device, queue)?;
+        craterfield_gpu::settle().await?;
+        Ok(marcher)
+    }
+
+    /// [`Self::render_to_rgba`] for every target: awaits the validation of the plan's
+    /// pipeline (compiled on a miss) and the readback instead of blocking.
+    pub async fn render_to_rgba_async(
+        &mut self,
+        plan: &Plan,
+        camera: &Camera3d,
+        width: u32,
+        height: u32,
+    ) -> Result<Vec<u8>, MarchGpuError> {
+        self.prepare(plan, camera, width, height)?;
+        craterfield_gpu::settle().await?;
+        let target = self.readback_target(width, height)?;
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("craterfield march3d"),
+            });
+        self.encode_pass(&mut encoder, plan.key, target.view(), width, height, None);
+        target.encode_copy(&mut encoder);
+        self.queue.submit([encoder.finish()]);
+        let pixels = target.read_async(&self.device).await;
+        self.readback = Some(target);
+        Ok(pixels?.into_raw())
+    }
+
+    /// The readback target, made anew when the size changed.
+    fn readback_target(&mut self, width: u32, height: u32) -> Result<Offscreen, MarchGpuError> {
+        match self.readback.take() {
+            Some(target) if target.size() == (width, height) => Ok(target),
+            _ => Ok(Offscreen::storage(&self.device, width, height)?),
+        }
+    }
+
     /// Renders `plan` seen by `camera` at `width x height` and reads back the pixels: RGBA,
-    /// 4 bytes per pixel, rows top to bottom.
+    /// 4 bytes per pixel, rows top to bottom. Native targets only (see
+    /// [`Self::render_to_rgba_async`]).
+    #[cfg(not(target_family = "wasm"))]
     pub fn render_to_rgba(
         &mut self,
         plan: &Plan,
@@ -192,7 +242,8 @@ impl Marcher {
     /// milliseconds: GPU time of the pass from timestamp queries when the device has them
     /// ([`gpu_timestamps`](Self::gpu_timestamps)), otherwise wall-clock time from submitting
     /// the pass to its completion. Compiling a new plan's pipeline is not timed. Each wait
-    /// for the GPU is bounded by the [`wait_limit`](Self::wait_limit).
+    /// for the GPU is bounded by the [`wait_limit`](Self::wait_limit). Native targets only.
+    #[cfg(not(target_family = "wasm"))]
     pub fn render_timed(
         &mut self,
         plan: &Plan,
@@ -201,15 +252,10 @@ impl Marcher {
         height: u32,
     ) -> Result<(Vec<u8>, f64), MarchGpuError> {
         self.prepare(plan, camera, width, height)?;
-        if self
-            .readback
-            .as_ref()
-            .is_none_or(|r| r.size() != (width, height))
-        {
-            self.readback = Some(Offscreen::storage(&self.device, width, height)?);
-        }
+        let target = self.readback_target(width, height)?;
+        self.readback = Some(target);
         let Some(target) = self.readback.as_ref() else {
-            unreachable!("the readback target was just made");
+            unreachable!("the readback target was just set");
         };
         let mut encoder = self
             .device
@@ -254,6 +300,8 @@ impl Marcher {
         width: u32,
         height: u32,
     ) -> Result<(), MarchGpuError> {
+        // In a browser: a pipeline made earlier that the device has since refused.
+        craterfield_gpu::pending_errors()?;
         // The CPU tracer's limits too: the same image sizes on both renderers.
         let limit = self
             .device
@@ -373,11 +421,16 @@ fn compile(
         compilation_options: Default::default(),
         cache: None,
     });
-    match pollster::block_on(scope.pop()) {
-        Some(e) => Err(MarchGpuError::Validation {
+    craterfield_gpu::validated(
+        scope,
+        || format!("march3d plan {:#018x}", plan.key),
+        pipeline,
+    )
+    .map_err(|e| match e {
+        craterfield_gpu::GpuError::Validation { message, .. } => MarchGpuError::Validation {
             key: plan.key,
-            message: e.to_string(),
-        }),
-        None => Ok(pipeline),
-    }
+            message,
+        },
+        other => other.into(),
+    })
 }

@@ -31,7 +31,9 @@ pub(crate) mod uniforms;
 
 use craterfield_gpu::GpuError;
 pub use error::{RenderError, Unsupported};
-pub use readback::{Pipeline, render_to_image};
+#[cfg(not(target_family = "wasm"))]
+pub use readback::render_to_image;
+pub use readback::{Pipeline, render_to_image_async};
 pub use renderer::{PrepareStats, TerrainRenderer};
 
 #[cfg(test)]

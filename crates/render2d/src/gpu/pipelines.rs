@@ -1,14 +1,16 @@
 //! Bind group layout entries and pipeline constructors shared by the 2D render passes;
-//! shader and pipeline validation errors come back as values ([`GpuError::Validation`]
-//! in a [`RenderError`]).
+//! shader and pipeline validation errors come back as values
+//! ([`craterfield_gpu::GpuError::Validation`] in a [`RenderError`]; in a browser from a
+//! later call, see [`craterfield_gpu::validated`]).
 
-use super::{GpuError, RenderError};
+use super::RenderError;
 
-/// A uniform buffer at `binding`, visible to every stage.
+/// A uniform buffer at `binding`, visible to the vertex, fragment and compute stages.
+/// (Not `ShaderStages::all()`: that includes the mesh shader stages, which WebGPU refuses.)
 pub(super) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::all(),
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Uniform,
             has_dynamic_offset: false,
@@ -99,14 +101,11 @@ fn validated<P>(
     entry: &str,
     pipeline: P,
 ) -> Result<P, RenderError> {
-    match pollster::block_on(scope.pop()) {
-        Some(e) => Err(GpuError::Validation {
-            what: format!("{label} ({entry})"),
-            message: e.to_string(),
-        }
-        .into()),
-        None => Ok(pipeline),
-    }
+    Ok(craterfield_gpu::validated(
+        scope,
+        || format!("{label} ({entry})"),
+        pipeline,
+    )?)
 }
 
 /// A compute pipeline over `bind_layouts`, validation errors as values.

@@ -18,13 +18,38 @@ pub enum Pipeline {
 }
 
 /// Renders the prepared frame of `renderer` (whose target format must be
-/// [`READBACK_FORMAT`]) with `pipeline` and reads it back.
+/// [`READBACK_FORMAT`]) with `pipeline` and reads it back. Native targets only: in a
+/// browser, await [`render_to_image_async`].
+#[cfg(not(target_family = "wasm"))]
 pub fn render_to_image(
     renderer: &TerrainRenderer,
     width: u32,
     height: u32,
     pipeline: Pipeline,
 ) -> Result<RgbaImage, RenderError> {
+    let target = submit_to_offscreen(renderer, width, height, pipeline)?;
+    Ok(target.read(renderer.device())?)
+}
+
+/// [`render_to_image`] for every target, awaiting the readback.
+pub async fn render_to_image_async(
+    renderer: &TerrainRenderer,
+    width: u32,
+    height: u32,
+    pipeline: Pipeline,
+) -> Result<RgbaImage, RenderError> {
+    let target = submit_to_offscreen(renderer, width, height, pipeline)?;
+    Ok(target.read_async(renderer.device()).await?)
+}
+
+/// Renders the prepared frame into a new offscreen target and submits its copy to the
+/// readback buffer.
+fn submit_to_offscreen(
+    renderer: &TerrainRenderer,
+    width: u32,
+    height: u32,
+    pipeline: Pipeline,
+) -> Result<Offscreen, RenderError> {
     if renderer.target_format() != READBACK_FORMAT {
         return Err(RenderError::TargetFormat(renderer.target_format()));
     }
@@ -39,5 +64,5 @@ pub fn render_to_image(
     }
     target.encode_copy(&mut encoder);
     renderer.queue().submit([encoder.finish()]);
-    Ok(target.read(device)?)
+    Ok(target)
 }

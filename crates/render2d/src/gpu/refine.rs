@@ -20,7 +20,7 @@ use super::{RenderError, Unsupported};
 use crate::twin::{REFINE_BLOCK as BLOCK, RefineStats};
 use craterfield_field::Sdf;
 use craterfield_field::Terrain;
-use craterfield_gpu::map_read;
+use craterfield_gpu::map_read_async;
 
 /// Storage buffers one stage of the refine passes binds at most (`cs_exact`: the four of the
 /// field, the list, work and colours; `cs_signs`: the field's, proofs and blocks).
@@ -257,7 +257,7 @@ impl RefineTargets {
     }
 
     /// Reads the counters of the last submitted frame back (waits for the device).
-    pub(crate) fn stats(
+    pub(crate) async fn stats(
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -269,9 +269,10 @@ impl RefineTargets {
         });
         encoder.copy_buffer_to_buffer(&self.work, 0, &self.readback, 0, WORK_BYTES);
         queue.submit([encoder.finish()]);
-        let work: GpuWork = map_read(device, &self.readback, |bytes| {
+        let work: GpuWork = map_read_async(device, &self.readback, |bytes| {
             bytemuck::pod_read_unaligned(&bytes[..WORK_BYTES as usize])
-        })?;
+        })
+        .await?;
         Ok(stats_of(&work, texels, pixels))
     }
 }

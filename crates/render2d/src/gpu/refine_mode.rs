@@ -95,7 +95,7 @@ impl RefineMode {
     }
 
     /// What the last frame submitted did (waits for the device).
-    pub(super) fn stats(
+    pub(super) async fn stats(
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -103,12 +103,14 @@ impl RefineMode {
         camera: &Camera,
     ) -> Result<RefineStats, RenderError> {
         let targets = self.targets.as_ref().ok_or(RenderError::NotPrepared)?;
-        targets.stats(
-            device,
-            queue,
-            u64::from(lattice.cols) * u64::from(lattice.rows),
-            u64::from(camera.width) * u64::from(camera.height),
-        )
+        targets
+            .stats(
+                device,
+                queue,
+                u64::from(lattice.cols) * u64::from(lattice.rows),
+                u64::from(camera.width) * u64::from(camera.height),
+            )
+            .await
     }
 
     /// The mode's bind groups over the renderer's shared resources (`None` until

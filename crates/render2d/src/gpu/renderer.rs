@@ -142,7 +142,10 @@ fn upsample_index(options: &RenderOptions) -> usize {
 }
 
 impl TerrainRenderer {
-    /// A renderer drawing into textures of `target_format` with `options`.
+    /// A renderer drawing into textures of `target_format` with `options`, on the game's
+    /// `device`. In a browser the validation of its pipelines is still pending when this
+    /// returns (a failure comes back from a later `prepare`): await [`Self::new_async`]
+    /// there to have it checked first.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -236,6 +239,21 @@ impl TerrainRenderer {
         })
     }
 
+    /// [`Self::new`], returning once the device has validated the renderer's pipelines:
+    /// the constructor for a browser, where that answer comes from the page's event loop.
+    /// (Pipelines compiled later, for a level's field or a mode, are checked at the
+    /// `prepare` after the answer comes.)
+    pub async fn new_async(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        target_format: wgpu::TextureFormat,
+        options: RenderOptions,
+    ) -> Result<TerrainRenderer, RenderError> {
+        let renderer = TerrainRenderer::new(device, queue, target_format, options)?;
+        craterfield_gpu::settle().await?;
+        Ok(renderer)
+    }
+
     /// The options in use.
     pub fn options(&self) -> &RenderOptions {
         &self.options
@@ -264,6 +282,8 @@ impl TerrainRenderer {
         palette: &[[u8; 3]],
         camera: &Camera,
     ) -> Result<PrepareStats, RenderError> {
+        // In a browser: a pipeline made earlier that the device has since refused.
+        craterfield_gpu::pending_errors()?;
         let lattice = Lattice::new(camera, self.options.scale)?;
         let refine = self.options.reconstruction == Reconstruction::Refine;
         if refine {
@@ -387,14 +407,20 @@ impl TerrainRenderer {
 
     /// What mode refine did in the last frame submitted (waits for the device): blocks
     /// proven and evaluated, pixels evaluated exactly, and field evaluations (texels,
-    /// corner samples, exact pixels).
+    /// corner samples, exact pixels). Native targets only (see [`Self::refine_stats_async`]).
+    #[cfg(not(target_family = "wasm"))]
     pub fn refine_stats(&self) -> Result<RefineStats, RenderError> {
+        pollster::block_on(self.refine_stats_async())
+    }
+
+    /// [`Self::refine_stats`] for every target, awaiting the readback.
+    pub async fn refine_stats_async(&self) -> Result<RefineStats, RenderError> {
         let (prepared, _, _) = self.ready()?;
         if self.options.reconstruction != Reconstruction::Refine {
             return Err(RenderError::NotPrepared);
         }
         let (l, c) = (&prepared.lattice, &prepared.camera);
-        self.refine.stats(&self.device, &self.queue, l, c)
+        self.refine.stats(&self.device, &self.queue, l, c).await
     }
 
     fn write_palette(&mut self, palette: &[[u8; 3]]) {
