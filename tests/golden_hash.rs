@@ -6,6 +6,13 @@
 
 mod common;
 
+// In a browser the same tests run under wasm-bindgen-test (`scripts/test`'s web leg), so
+// the pinned bits are checked on wasm32 too.
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+#[cfg(target_family = "wasm")]
+wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
+
 use common::Rng;
 use craterfield::backend::Backend;
 use craterfield::field2d::{Event, EventKind, Level, Sample, Sdf, Terrain};

@@ -5,6 +5,7 @@
 #![allow(dead_code)]
 
 #[cfg(feature = "gpu")]
+#[cfg(not(target_family = "wasm"))]
 pub(crate) mod gpu;
 #[cfg(feature = "raster")]
 pub(crate) mod shade_steps;

@@ -1,8 +1,10 @@
-//! Starting a demo: the wgpu device both demos ask eframe for (the library's renderers'
-//! limits, timestamp queries where the adapter has them), a check for an adapter before any
-//! window opens, and the errors that the binaries turn into exit statuses.
+//! Starting a demo in a native window: a check for an adapter before any window opens,
+//! eframe's native runner on the device of [`super::wgpu_setup`], and the errors that the
+//! binaries turn into exit statuses.
 
 use std::sync::{Arc, Mutex};
+
+use super::device::wgpu_setup;
 
 use thiserror::Error;
 
@@ -37,24 +39,6 @@ impl LaunchError {
             LaunchError::Run(_) => 1,
         }
     }
-}
-
-/// Device features the demos use where the adapter offers them.
-fn wanted_features(adapter: &wgpu::Adapter) -> wgpu::Features {
-    adapter.features() & wgpu::Features::TIMESTAMP_QUERY
-}
-
-/// How eframe (and the tests' harness) create the device: the limits the library's
-/// renderers need ([`craterfield::gpu::device_limits`]) and timestamp queries when offered.
-pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
-    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
-    setup.device_descriptor = Arc::new(|adapter| wgpu::DeviceDescriptor {
-        label: Some("craterfield demo"),
-        required_features: wanted_features(adapter),
-        required_limits: craterfield::gpu::device_limits(&adapter.limits()),
-        ..Default::default()
-    });
-    egui_wgpu::WgpuSetup::CreateNew(setup)
 }
 
 /// Fails with [`LaunchError::NoAdapter`] when wgpu finds no adapter at all.

@@ -2,8 +2,9 @@
 //! handles the pointer over the terrain (brush, pan, zoom), draws the terrain with the GPU
 //! renderer and the bodies and overlays on top, and shows the side panel.
 
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::path::Path;
+
+use web_time::Instant;
 
 use craterfield::field2d::{Event, Level};
 use craterfield::render2d::RenderOptions;
@@ -81,6 +82,8 @@ pub struct SandboxApp {
     stroke_last: Option<Vec2>,
     driver: FrameDriver,
     bench: Option<Bench>,
+    #[cfg(target_family = "wasm")]
+    pub(super) inbox: crate::web::FileInbox,
 }
 
 impl SandboxApp {
@@ -113,6 +116,8 @@ impl SandboxApp {
             stroke_last: None,
             driver,
             bench: bench.then(Bench::default),
+            #[cfg(target_family = "wasm")]
+            inbox: crate::web::FileInbox::default(),
         };
         if let Some(path) = level_file {
             app.level_path = path.display().to_string();
@@ -184,22 +189,61 @@ impl SandboxApp {
         });
     }
 
-    fn dropped_files(&mut self, ctx: &egui::Context) {
-        let dropped: Vec<PathBuf> = ctx.input(|i| {
-            i.raw
-                .dropped_files
-                .iter()
-                .map(|f| f.path().to_path_buf())
-                .collect()
-        });
-        for path in dropped {
-            if path.extension().is_some_and(|e| e == "replay") {
-                self.replay_path = path.display().to_string();
-                self.load_replay(&path);
-            } else {
-                self.level_path = path.display().to_string();
-                self.load_level(&path);
+    /// Opens a file handed over as bytes (dropped onto a browser page, or chosen with its
+    /// file picker): a `.replay` is loaded and verified, anything else is read as a level.
+    pub fn open_file(&mut self, name: &str, bytes: &[u8]) {
+        if name.ends_with(".replay") {
+            self.message = Some(match self.session.load_replay_bytes(bytes) {
+                Ok(()) => format!("loaded replay {name}"),
+                Err(e) => format!("replay not loaded: {name}: {e}"),
+            });
+            self.scrub_tick = 0;
+            return;
+        }
+        let level = std::str::from_utf8(bytes)
+            .map_err(|e| format!("not UTF-8 text: {e}"))
+            .and_then(|text| Level::from_ron(text).map_err(|e| e.to_string()));
+        match level.and_then(Session::new) {
+            Ok(session) => {
+                self.session = session;
+                self.view = None;
+                self.level_error = None;
+                self.message = Some(format!("loaded level {name}"));
             }
+            Err(e) => self.level_error = Some(format!("{name}: {e}")),
+        }
+    }
+
+    /// Files dropped onto the window; in a browser also those chosen with the page's file
+    /// picker, which arrive a few frames later (a browser reads files asynchronously).
+    fn dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped = ctx.input(|i| i.raw.dropped_files.clone());
+        #[cfg(not(target_family = "wasm"))]
+        for file in dropped {
+            self.open_path(file.path());
+        }
+        #[cfg(target_family = "wasm")]
+        {
+            for file in dropped {
+                crate::web::read_dropped(file, &self.inbox, ctx);
+            }
+            for picked in self.inbox.take() {
+                match picked {
+                    Ok((name, bytes)) => self.open_file(&name, &bytes),
+                    Err(e) => self.level_error = Some(e),
+                }
+            }
+        }
+    }
+
+    #[cfg(not(target_family = "wasm"))]
+    fn open_path(&mut self, path: &Path) {
+        if path.extension().is_some_and(|e| e == "replay") {
+            self.replay_path = path.display().to_string();
+            self.load_replay(path);
+        } else {
+            self.level_path = path.display().to_string();
+            self.load_level(path);
         }
     }
 

@@ -2,6 +2,7 @@
 //! and timings with their tails, the level file, and the recording (save, load, verify,
 //! scrub, play).
 
+#[cfg(not(target_family = "wasm"))]
 use std::path::PathBuf;
 
 use craterfield::render2d::{Reconstruction, Scale, Upsample};
@@ -185,17 +186,7 @@ impl SandboxApp {
         if let Some((tick, _)) = self.session.divergence() {
             ui.colored_label(ERROR_COLOR, format!("playback diverged at tick {tick}"));
         }
-        let label = ui.label("Replay file");
-        ui.text_edit_singleline(&mut self.replay_path)
-            .labelled_by(label.id);
-        ui.horizontal(|ui| {
-            if ui.button("Save replay").clicked() {
-                self.save_replay(&PathBuf::from(self.replay_path.clone()));
-            }
-            if ui.button("Load replay").clicked() {
-                self.load_replay(&PathBuf::from(self.replay_path.clone()));
-            }
-        });
+        self.replay_file(ui);
         match self.session.verified() {
             Some(Verified::Passed { ticks, hashes }) => {
                 ui.label(format!(
@@ -218,6 +209,11 @@ impl SandboxApp {
             cost.instructions,
             craterfield::field2d::MAX_EVAL_WORK
         ));
+        self.level_file(ui);
+    }
+
+    #[cfg(not(target_family = "wasm"))]
+    fn level_file(&mut self, ui: &mut egui::Ui) {
         let label = ui.label("Level file");
         ui.text_edit_singleline(&mut self.level_path)
             .labelled_by(label.id);
@@ -225,6 +221,54 @@ impl SandboxApp {
             self.load_level(&PathBuf::from(self.level_path.clone()));
         }
         ui.label("or drop a level (.ron) or a .replay onto the window");
+    }
+
+    #[cfg(not(target_family = "wasm"))]
+    fn replay_file(&mut self, ui: &mut egui::Ui) {
+        let label = ui.label("Replay file");
+        ui.text_edit_singleline(&mut self.replay_path)
+            .labelled_by(label.id);
+        ui.horizontal(|ui| {
+            if ui.button("Save replay").clicked() {
+                self.save_replay(&PathBuf::from(self.replay_path.clone()));
+            }
+            if ui.button("Load replay").clicked() {
+                self.load_replay(&PathBuf::from(self.replay_path.clone()));
+            }
+        });
+    }
+
+    /// In a browser: the page's file picker, and drag and drop onto the page.
+    #[cfg(target_family = "wasm")]
+    fn level_file(&mut self, ui: &mut egui::Ui) {
+        if ui.button("Open level or replay…").clicked()
+            && let Err(e) = crate::web::pick_files(&self.inbox, ui.ctx())
+        {
+            self.level_error = Some(format!("no file picker: {e}"));
+        }
+        ui.label("or drop a level (.ron) or a .replay onto the page");
+    }
+
+    /// In a browser: the recording is saved as a download, and loaded like a level.
+    #[cfg(target_family = "wasm")]
+    fn replay_file(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            if ui.button("Download replay").clicked() {
+                let saved = self
+                    .session
+                    .replay_bytes()
+                    .and_then(|bytes| crate::web::download(&self.replay_path, &bytes));
+                self.message = Some(match saved {
+                    Ok(()) => format!("saved {} ticks", self.session.timeline().ticks()),
+                    Err(e) => format!("replay not saved: {e}"),
+                });
+            }
+            if ui.button("Open replay…").clicked()
+                && let Err(e) = crate::web::pick_files(&self.inbox, ui.ctx())
+            {
+                self.message = Some(format!("no file picker: {e}"));
+            }
+        });
     }
 }
 

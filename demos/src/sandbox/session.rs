@@ -5,7 +5,7 @@
 //! scrubbed.
 
 use std::path::Path;
-use std::time::Instant;
+use web_time::Instant;
 
 use craterfield::field2d::{Event, Level};
 use craterfield::net::DecodeLimits;

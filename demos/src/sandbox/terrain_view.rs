@@ -3,7 +3,9 @@
 //! timestamp queries where the adapter has them; and the CPU twin's refine overlay on
 //! request.
 
-use std::time::Instant;
+use std::rc::Rc;
+
+use web_time::Instant;
 
 use craterfield::field2d::{Graph, Terrain};
 use craterfield::gpu::Timestamps;
@@ -40,7 +42,7 @@ struct Overlay {
 pub struct TerrainView {
     renderer: TerrainRenderer,
     image: Option<GpuImage>,
-    stamps: Option<Timestamps>,
+    timer: Option<PassTimer>,
     last: FrameCost,
     overlay: Option<Overlay>,
 }
@@ -53,7 +55,7 @@ impl TerrainView {
         Ok(TerrainView {
             renderer,
             image: None,
-            stamps: Timestamps::new(&rs.device, &rs.queue, 2),
+            timer: Timestamps::new(&rs.device, &rs.queue, 2).map(PassTimer::new),
             last: FrameCost::default(),
             overlay: None,
         })
@@ -73,7 +75,7 @@ impl TerrainView {
 
     /// Whether per-pass GPU times are measured.
     pub fn has_timestamps(&self) -> bool {
-        self.stamps.is_some()
+        self.timer.is_some()
     }
 
     /// Pipeline cache `(hits, misses)`.
@@ -107,7 +109,8 @@ impl TerrainView {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("sandbox terrain"),
             });
-        match self.stamps.as_ref().and_then(|s| s.pair(0)) {
+        let timer = self.timer.as_ref().filter(|t| t.ready());
+        match timer.and_then(|t| t.stamps.pair(0)) {
             Some((set, index)) => {
                 self.renderer
                     .render_timed_passes(&mut encoder, image.target(), set, index)
@@ -115,18 +118,14 @@ impl TerrainView {
             None => self.renderer.render(&mut encoder, image.target()),
         }
         .map_err(|e| e.to_string())?;
-        if let Some(stamps) = &self.stamps {
-            stamps.encode_resolve(&mut encoder);
+        if let Some(t) = timer {
+            t.stamps.encode_resolve(&mut encoder);
         }
         rs.queue.submit([encoder.finish()]);
         let cpu_ms = started.elapsed().as_secs_f64() * 1e3;
         let id = image.id();
-        let gpu_ms = match &self.stamps {
-            Some(stamps) => Some(pass_times(
-                &stamps
-                    .read_marks_ms(&rs.device)
-                    .map_err(|e| e.to_string())?,
-            )),
+        let gpu_ms = match timer {
+            Some(t) => t.read(&rs.device)?,
             None => None,
         };
         self.last = FrameCost {
@@ -176,4 +175,63 @@ impl TerrainView {
 fn pass_times(marks: &[f64]) -> [f64; 3] {
     let at = |i: usize| marks.get(i).copied().unwrap_or(0.0);
     [at(1) - at(0), at(2) - at(1), at(3) - at(2)]
+}
+
+/// The timestamp queries of the three passes. Natively a frame's times are read back as soon
+/// as it is submitted. A browser's readback can only be awaited: there the times of a frame
+/// arrive during a later one, and frames drawn while a read is in flight go untimed.
+struct PassTimer {
+    stamps: Rc<Timestamps>,
+    #[cfg(target_family = "wasm")]
+    arrived: Rc<std::cell::Cell<Option<Option<[f64; 3]>>>>,
+    #[cfg(target_family = "wasm")]
+    reading: Rc<std::cell::Cell<bool>>,
+}
+
+impl PassTimer {
+    fn new(stamps: Timestamps) -> PassTimer {
+        PassTimer {
+            stamps: Rc::new(stamps),
+            #[cfg(target_family = "wasm")]
+            arrived: Rc::default(),
+            #[cfg(target_family = "wasm")]
+            reading: Rc::default(),
+        }
+    }
+
+    /// Whether this frame can be timed (its buffers are not being read).
+    fn ready(&self) -> bool {
+        #[cfg(target_family = "wasm")]
+        {
+            !self.reading.get()
+        }
+        #[cfg(not(target_family = "wasm"))]
+        {
+            true
+        }
+    }
+
+    /// The pass times of the frame just submitted (natively), or of the latest frame whose
+    /// times have arrived (in a browser, where this frame's read starts now).
+    #[cfg(not(target_family = "wasm"))]
+    fn read(&self, device: &wgpu::Device) -> Result<Option<[f64; 3]>, String> {
+        let marks = self
+            .stamps
+            .read_marks_ms(device)
+            .map_err(|e| e.to_string())?;
+        Ok(Some(pass_times(&marks)))
+    }
+
+    #[cfg(target_family = "wasm")]
+    fn read(&self, device: &wgpu::Device) -> Result<Option<[f64; 3]>, String> {
+        self.reading.set(true);
+        let (stamps, device) = (self.stamps.clone(), device.clone());
+        let (arrived, reading) = (self.arrived.clone(), self.reading.clone());
+        wasm_bindgen_futures::spawn_local(async move {
+            let marks = stamps.read_marks_ms_async(&device).await;
+            arrived.set(Some(marks.ok().map(|m| pass_times(&m))));
+            reading.set(false);
+        });
+        Ok(self.arrived.take().flatten())
+    }
 }
