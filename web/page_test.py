@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The sandbox page in a real browser: serves the built page on 127.0.0.1, opens it in
 headless Chromium through chromedriver (WebDriver), waits for the app's first frames, clicks
-the terrain and checks from screenshots that a crater appeared where it clicked.
+the terrain and checks from screenshots that a crater appeared where it clicked. First it
+opens the page in a Chromium without WebGPU, which must get the page's message instead.
 
     web/page_test.py PAGE_DIR ARTIFACT_DIR
 
@@ -56,7 +57,7 @@ class QuietHandler(http.server.SimpleHTTPRequestHandler):
 class WebDriver:
     """The few WebDriver commands the test needs, over chromedriver's HTTP API."""
 
-    def __init__(self):
+    def __init__(self, webgpu=True):
         self.port = free_port()
         self.proc = subprocess.Popen(
             [CHROMEDRIVER, f"--port={self.port}"],
@@ -78,15 +79,19 @@ class WebDriver:
             "--headless=new",
             "--no-sandbox",
             "--disable-dev-shm-usage",
-            "--enable-unsafe-webgpu",
-            # Headless Chromium composites a WebGPU canvas into screenshots only with
-            # SwiftShader's Vulkan (without these the screenshot is blank white).
-            "--enable-features=Vulkan",
-            "--use-vulkan=swiftshader",
-            "--use-angle=swiftshader",
-            "--enable-unsafe-swiftshader",
             f"--window-size={WINDOW[0]},{WINDOW[1]}",
-        ] + os.environ.get("CHROMIUM_ARGS", "").split()
+        ]
+        if webgpu:
+            args += [
+                "--enable-unsafe-webgpu",
+                # Headless Chromium composites a WebGPU canvas into screenshots only with
+                # SwiftShader's Vulkan (without these the screenshot is blank white).
+                "--enable-features=Vulkan",
+                "--use-vulkan=swiftshader",
+                "--use-angle=swiftshader",
+                "--enable-unsafe-swiftshader",
+            ]
+        args += os.environ.get("CHROMIUM_ARGS", "").split()
         caps = {"capabilities": {"alwaysMatch": {
             "browserName": "chrome",
             "goog:chromeOptions": {"binary": CHROMIUM, "args": args},
@@ -216,9 +221,27 @@ def changed_near(before, after, x, y, radius):
     return changed / total
 
 
+def without_webgpu(url):
+    """Chromium on Linux offers WebGPU only behind a flag: without it the page must say
+    that the browser has no WebGPU, and start nothing."""
+    driver = WebDriver(webgpu=False)
+    try:
+        driver.cmd("POST", "/url", {"url": url})
+        state = wait_for("the page to give up", lambda: driver.script(
+            "return document.body.dataset.state === 'loading' ? null : document.body.dataset.state"),
+            START_TIMEOUT_S)
+        text = driver.script("return document.getElementById('message').textContent")
+        if state != "error" or "WebGPU" not in text:
+            raise RuntimeError(f"without WebGPU the page is {state!r} and says {text!r}")
+        print(f"page test: without WebGPU the page says: {text}", flush=True)
+    finally:
+        driver.close()
+
+
 def main(page_dir, artifacts):
     os.makedirs(artifacts, exist_ok=True)
     url = serve(page_dir)
+    without_webgpu(url)
     driver = WebDriver()
     try:
         driver.cmd("POST", "/url", {"url": url})
