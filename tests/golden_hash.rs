@@ -4,6 +4,7 @@
 //! A change of these values is a change of the simulation's bits: it breaks replays and
 //! network play between versions, so it must be deliberate.
 
+#[macro_use]
 mod common;
 
 // In a browser the same tests run under wasm-bindgen-test (`scripts/test`'s web leg), so
@@ -120,7 +121,7 @@ fn default_level_after_10k_events_hashes_to_the_golden_values() {
         let mut d = vec![0.0; pts.len()];
         t.distances(&pts, &mut d).unwrap();
         let (hs, hd) = (hash_samples(&s), fnv(d.iter().map(|v| v.to_bits())));
-        println!("{b}: samples {hs:#018x} distances {hd:#018x}");
+        say!("{b}: samples {hs:#018x} distances {hd:#018x}");
         assert_eq!(hs, GOLDEN_SAMPLES, "{b}: sample hash {hs:#018x}");
         assert_eq!(hd, GOLDEN_DISTANCES, "{b}: distance hash {hd:#018x}");
         if reference.is_none() {

@@ -2,6 +2,7 @@
 //! every run, evaluator backend and thread count, and after any pattern of rollbacks; a
 //! golden hash of a scripted 600-tick match is pinned (and checked on aarch64 too).
 
+#[macro_use]
 mod common;
 
 // In a browser the same tests run under wasm-bindgen-test (`scripts/test`'s web leg), so
@@ -132,7 +133,7 @@ fn golden_match_hash() {
     }
     let events = w.terrain().events().len();
     let bodies = w.bodies().len();
-    eprintln!(
+    say!(
         "golden match: final {:#018x}, all ticks {:#018x}, {events} events, {bodies} bodies",
         hashes[599],
         all.finish()

@@ -8,7 +8,7 @@
 # cache folder, and std is built once per toolchain into the wasm target folder there.
 
 # Where tools and build outputs live, outside the clone (a fresh machine starts it empty).
-CRATERFIELD_CACHE=${CRATERFIELD_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/craterfield}
+CRATERFIELD_CACHE=${CRATERFIELD_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/craterfield}
 WEB_TOOLS=$CRATERFIELD_CACHE/tools
 WEB_TARGET_DIR=$CRATERFIELD_CACHE/target-wasm
 WEB_TARGET=wasm32-unknown-unknown
@@ -16,7 +16,7 @@ WEB_TARGET=wasm32-unknown-unknown
 # What the web leg builds, in one cargo invocation so that everything shares one feature
 # resolution and each dependency is built once: the library with every renderer (its
 # browser tests) and the sandbox page.
-WEB_TESTS=(-p craterfield -p craterfield-web --test golden_hash --test sim_determinism --test web_render)
+WEB_TESTS=(-p craterfield -p craterfield-web --test golden_hash --test sim_determinism --test web_render --test web_march3d)
 WEB_BUILD=("${WEB_TESTS[@]}" --lib)
 
 WEB_PKGS=(rustc-web cargo-web rust-web-src rust-web-llvm lld-22 chromium chromium-driver python3)

@@ -10,6 +10,18 @@ pub(crate) mod gpu;
 #[cfg(feature = "raster")]
 pub(crate) mod shade_steps;
 
+/// `eprintln!` that a browser test shows too: in WebAssembly it writes to the page's console,
+/// which wasm-bindgen-test prints (std's output goes nowhere there).
+#[macro_export]
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        #[cfg(target_family = "wasm")]
+        wasm_bindgen_test::console_log!($($arg)*);
+        #[cfg(not(target_family = "wasm"))]
+        eprintln!($($arg)*);
+    }};
+}
+
 use craterfield::field2d::Aabb;
 use craterfield::sim::Input;
 use craterfield::sim::buttons::{FIRE, JUMP, STICK};
