@@ -34,17 +34,22 @@ wasm_bindgen_version() {
     sed -n '/^name = "wasm-bindgen"$/{n;s/^version = "\(.*\)"$/\1/p;}' Cargo.lock
 }
 
+# A heading: scripts/test's `log` (a timed stage) where the caller has one, else a line.
+web_log() {
+    if declare -F log >/dev/null; then log "$@"; else echo "$@"; fi
+}
+
 ensure_web_tools() {
     local missing want
     mapfile -t missing < <(web_pkgs_missing)
     if ((${#missing[@]})); then
-        echo "installing the web leg's packages: ${missing[*]}"
+        web_log "installing the web leg's packages: ${missing[*]}"
         apt-get update -q
         DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
     fi
     want=$(wasm_bindgen_version)
     if [[ "$("$WEB_TOOLS/bin/wasm-bindgen" --version 2>/dev/null)" != "wasm-bindgen $want" ]]; then
-        echo "installing wasm-bindgen-cli $want into $WEB_TOOLS"
+        web_log "installing wasm-bindgen-cli $want into $WEB_TOOLS"
         cargo install --quiet --force wasm-bindgen-cli --version "=$want" --root "$WEB_TOOLS"
     fi
 }

@@ -126,7 +126,7 @@ impl SandboxApp {
             ui.label(format!("pipeline cache {hits} hits, {misses} misses"));
         }
         if let Some(rs) = frame.wgpu_render_state() {
-            ui.label(format!("adapter {}", rs.adapter.get_info().name));
+            ui.label(adapter_label(&rs.adapter.get_info()));
         }
         let t = &self.timings;
         let mut rows = vec![
@@ -306,4 +306,18 @@ fn help(ui: &mut egui::Ui) {
     ] {
         ui.label(line);
     }
+}
+
+/// The adapter as the panel names it. A browser may keep the device's name to itself (an
+/// empty string through WebGPU), so the backend and device type are always shown.
+fn adapter_label(info: &wgpu::AdapterInfo) -> String {
+    let name = if info.name.is_empty() {
+        "(name not given)"
+    } else {
+        info.name.as_str()
+    };
+    format!(
+        "adapter {name} ({:?}, {:?})",
+        info.backend, info.device_type
+    )
 }
