@@ -193,13 +193,30 @@ pub async fn map_read_async<T>(
     .await;
     mapped?;
     let out = {
-        let data = slice
-            .get_mapped_range()
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let data = slice.get_mapped_range().into_view()?;
         read(&data)
     };
     buffer.unmap();
     Ok(out)
+}
+
+/// A mapped range as wgpu 29 and 30 give it: wgpu 30 returns a `Result`, wgpu 29 the view
+/// itself. The library builds against both, so that a game on either (Bevy 0.19's renderer is on
+/// wgpu 29) shares its device with the renderers.
+trait MappedRange {
+    fn into_view(self) -> Result<wgpu::BufferView, GpuError>;
+}
+
+impl MappedRange for wgpu::BufferView {
+    fn into_view(self) -> Result<wgpu::BufferView, GpuError> {
+        Ok(self)
+    }
+}
+
+impl<E: std::fmt::Display> MappedRange for Result<wgpu::BufferView, E> {
+    fn into_view(self) -> Result<wgpu::BufferView, GpuError> {
+        self.map_err(|e| GpuError::Readback(e.to_string()))
+    }
 }
 
 /// Where a mapping's callback leaves its result for the future awaiting it.
