@@ -23,6 +23,7 @@ use serde::Serialize;
 use crate::barrage;
 use crate::rng::Rng;
 use crate::script::{self, Script};
+use crate::tails::Tails;
 
 /// Players in every measured world.
 const PLAYERS: u8 = 4;
@@ -66,6 +67,8 @@ struct Row {
     /// Mean over the timed ticks.
     ms_per_tick: f64,
     ms_per_tick_median: f64,
+    ms_per_tick_p95: f64,
+    ms_per_tick_p99: f64,
     ms_per_tick_max: f64,
     /// Bodies alive after the timed ticks.
     bodies_at_end: usize,
@@ -124,11 +127,14 @@ pub(crate) fn sim(opts: Options) -> Result<ExitCode, String> {
             world.step(&row).map_err(|e| e.to_string())?;
             times.push(t.elapsed().as_secs_f64() * 1e3);
         }
+        let tails = Tails::of(times.clone());
         rows.push(Row {
             bodies: n,
             ms_per_tick: times.iter().sum::<f64>() / times.len() as f64,
-            ms_per_tick_median: median(&mut times.clone()),
-            ms_per_tick_max: times.iter().copied().fold(0.0, f64::max),
+            ms_per_tick_median: tails.median,
+            ms_per_tick_p95: tails.p95,
+            ms_per_tick_p99: tails.p99,
+            ms_per_tick_max: tails.max,
             bodies_at_end: world.bodies().len(),
         });
     }
@@ -215,15 +221,17 @@ fn print_table(r: &Report) {
         }
     );
     println!(
-        "{:>8} {:>12} {:>12} {:>12} {:>10}",
-        "bodies", "ms/tick", "median", "max", "at end"
+        "{:>8} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8}",
+        "bodies", "ms/tick", "median", "p95", "p99", "max", "at end"
     );
     for row in &r.rows {
         println!(
-            "{:>8} {:>12.3} {:>12.3} {:>12.3} {:>10}",
+            "{:>8} {:>10.3} {:>10.3} {:>10.3} {:>10.3} {:>10.3} {:>8}",
             row.bodies,
             row.ms_per_tick,
             row.ms_per_tick_median,
+            row.ms_per_tick_p95,
+            row.ms_per_tick_p99,
             row.ms_per_tick_max,
             row.bodies_at_end
         );
