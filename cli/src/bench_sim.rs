@@ -6,7 +6,9 @@
 //! - snapshot and restore times (the restore goes back 8 ticks, as a rollback session
 //!   typically does) in a world of 1,000 bodies, medians over many repetitions;
 //! - replay bytes per minute of a scripted four-player match;
-//! - wire bytes per terrain event, for the events that match produced.
+//! - wire bytes per terrain event, for the events that match produced;
+//! - with `--peers` (feature `peers`), rapier2d beside the world on the same bodies and
+//!   terrain (`peers_sim`), both idle players and no explosions, same ticks, same run.
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -59,6 +61,12 @@ pub(crate) struct Options {
     /// Length in seconds of the scripted match measured for replay and wire sizes.
     #[arg(long, default_value_t = 60)]
     pub match_seconds: u32,
+    /// Also step rapier2d on the same bodies and terrain (needs the feature `peers`).
+    #[arg(long)]
+    pub peers: bool,
+    /// Bodies of the `--peers` comparison.
+    #[arg(long, default_value_t = 1000)]
+    pub peer_bodies: usize,
 }
 
 #[derive(Serialize)]
@@ -99,9 +107,40 @@ struct Report {
     match_replay_bytes: usize,
     match_events: usize,
     release: bool,
+    /// `--peers`: rapier2d on the same bodies and terrain.
+    #[cfg(feature = "peers")]
+    peers: Option<PhysicsComparison>,
+}
+
+/// `bench sim --peers`: the world and rapier2d stepping the same bodies on the same
+/// terrain, idle players, no explosions, the same ticks; milliseconds per tick.
+#[cfg(feature = "peers")]
+#[derive(Serialize)]
+struct PhysicsComparison {
+    bodies: usize,
+    craterfield: Tails,
+    craterfield_mean: f64,
+    rapier2d: Tails,
+    rapier2d_mean: f64,
+    /// Polyline edges of rapier2d's terrain.
+    rapier2d_segments: usize,
+    /// Contour spacing the polylines were extracted at, world units.
+    contour_spacing: f32,
+    /// Bodies rapier2d had put to sleep after the timed ticks.
+    rapier2d_sleeping: usize,
+    /// Bodies in play at the end (both remove those that fell out of the world).
+    craterfield_in_play: usize,
+    rapier2d_in_play: usize,
+    /// Of the balls in play at the end, those whose centre is deeper in the terrain than
+    /// their radius: each side's, as a check that both simulated the same scene.
+    craterfield_sunk: usize,
+    rapier2d_sunk: usize,
 }
 
 pub(crate) fn sim(opts: Options) -> Result<ExitCode, String> {
+    if opts.peers && !cfg!(feature = "peers") {
+        return Err("--peers needs rapier2d: build with `--features peers`".into());
+    }
     let level = Level::default_level();
     let largest = opts.bodies.iter().copied().max().unwrap_or(0);
     let mut settings = Settings::default();
@@ -196,6 +235,12 @@ pub(crate) fn sim(opts: Options) -> Result<ExitCode, String> {
         match_replay_bytes: replay_bytes,
         match_events: match_events.len(),
         release: !cfg!(debug_assertions),
+        #[cfg(feature = "peers")]
+        peers: if opts.peers {
+            Some(physics_peers(&base, &opts)?)
+        } else {
+            None
+        },
     };
     if opts.json {
         println!(
@@ -273,6 +318,109 @@ fn print_table(r: &Report) {
         "wire: {:.2} bytes per event for the barrage's events with the weapons' shapes, centres snapped to 1/4 unit",
         r.barrage_bytes_per_event
     );
+    #[cfg(feature = "peers")]
+    if let Some(c) = &r.peers {
+        print_peers(c, r.ticks, r.warmup);
+    }
+}
+
+#[cfg(feature = "peers")]
+fn print_peers(c: &PhysicsComparison, ticks: u32, warmup: u32) {
+    println!();
+    println!(
+        "physics peers: the same {} bodies on the same terrain, idle players, no explosions, {ticks} timed ticks after {warmup}, one thread",
+        c.bodies
+    );
+    println!(
+        "{:<44} {:>8} {:>8} {:>8} {:>8} {:>8}",
+        "ms per tick", "mean", "median", "p95", "p99", "max"
+    );
+    let row = |name: &str, mean: f64, t: &Tails| {
+        println!(
+            "{name:<44} {mean:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3}",
+            t.median, t.p95, t.p99, t.max
+        );
+    };
+    row(
+        "craterfield World::step",
+        c.craterfield_mean,
+        &c.craterfield,
+    );
+    row(
+        &format!("rapier2d 0.36 ({} polyline edges)", c.rapier2d_segments),
+        c.rapier2d_mean,
+        &c.rapier2d,
+    );
+    println!(
+        "(rapier2d: terrain from extract_contours at {} units; {} of {} bodies asleep at the end; median ratio craterfield/rapier2d {:.2})",
+        c.contour_spacing,
+        c.rapier2d_sleeping,
+        c.bodies,
+        c.craterfield.median / c.rapier2d.median
+    );
+    println!(
+        "bodies in play at the end: craterfield {}, rapier2d {}; balls sunk into the terrain: craterfield {}, rapier2d {}",
+        c.craterfield_in_play, c.rapier2d_in_play, c.craterfield_sunk, c.rapier2d_sunk
+    );
+}
+
+/// The world and rapier2d from the same populated world, each stepped `warmup` untimed
+/// and `ticks` timed ticks with idle players.
+#[cfg(feature = "peers")]
+fn physics_peers(base: &World, opts: &Options) -> Result<PhysicsComparison, String> {
+    use crate::peers_sim::{CONTOUR, RapierPeer};
+    let mut world = populated(base, opts.peer_bodies, 31)?;
+    let mut peer = RapierPeer::new(&world)?;
+    let idle = vec![Input::default(); usize::from(PLAYERS)];
+    let ticks = opts.ticks.max(1);
+    let mut ours = Vec::with_capacity(ticks as usize);
+    for i in 0..opts.warmup + ticks {
+        let t = Instant::now();
+        world.step(&idle).map_err(|e| e.to_string())?;
+        if i >= opts.warmup {
+            ours.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    let mut theirs = Vec::with_capacity(ticks as usize);
+    for i in 0..opts.warmup + ticks {
+        let t = Instant::now();
+        peer.step();
+        if i >= opts.warmup {
+            theirs.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    let sunk = |discs: &[(Vec2, f32)]| {
+        discs
+            .iter()
+            .filter(|&&(at, r)| !(at.is_finite() && base.terrain().distance(at) >= -r))
+            .count()
+    };
+    let ours_discs: Vec<(Vec2, f32)> = world
+        .bodies()
+        .iter()
+        .filter(|b| b.half_length == 0.0)
+        .map(|b| (b.pos, b.radius))
+        .collect();
+    let theirs_discs = peer.discs();
+    Ok(PhysicsComparison {
+        craterfield_sunk: sunk(&ours_discs),
+        rapier2d_sunk: sunk(&theirs_discs),
+        craterfield_in_play: world.bodies().len(),
+        rapier2d_in_play: peer.bodies_in_play(),
+        bodies: peer.bodies,
+        craterfield_mean: mean(&ours),
+        craterfield: Tails::of(ours),
+        rapier2d_mean: mean(&theirs),
+        rapier2d: Tails::of(theirs),
+        rapier2d_segments: peer.segments,
+        contour_spacing: CONTOUR.spacing,
+        rapier2d_sleeping: peer.sleeping(),
+    })
+}
+
+#[cfg(feature = "peers")]
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
 /// A world of four players on the default level with `count` barrage explosions applied

@@ -23,6 +23,8 @@ mod march3d_cmd;
 mod peers;
 #[cfg(feature = "peers")]
 mod peers_field;
+#[cfg(feature = "peers")]
+mod peers_sim;
 mod render_cmd;
 mod render_frame;
 mod replay_cmd;
