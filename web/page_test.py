@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 """The sandbox page in a real browser: serves the built page on 127.0.0.1, opens it in
 headless Chromium through chromedriver (WebDriver), waits for the app's first frames, clicks
-the terrain and checks from screenshots that a crater appeared where it clicked. First it
-opens the page in a Chromium without WebGPU, which must get the page's message instead.
+the terrain and checks from screenshots that a crater appeared where it clicked, then drops
+a level file (levels/caverns.ron) onto the page and checks that the terrain changed to it.
+First it opens the page in a Chromium without WebGPU, which must get the page's message
+instead.
 
     web/page_test.py PAGE_DIR ARTIFACT_DIR
 
 The screenshots before and after the click are kept in ARTIFACT_DIR. Exits non-zero, with
 what it saw, when the page does not start (no WebGPU: the page says so), draws no frames,
-or the click leaves the ground as it was. Standard library only.
+the click leaves the ground as it was, or the dropped level does not replace the terrain.
+Standard library only.
 """
 
 import base64
@@ -221,6 +224,30 @@ def changed_near(before, after, x, y, radius):
     return changed / total
 
 
+def drop_file(driver, name, text):
+    """Drops a file named `name` holding `text` onto the sandbox's canvas, as a user dragging
+    it from the desktop would (a drag-enter, a drag-over and a drop carrying the file)."""
+    driver.script(
+        "const dt = new DataTransfer();"
+        f"dt.items.add(new File([{json.dumps(text)}], {json.dumps(name)}));"
+        "const canvas = document.getElementById('sandbox');"
+        "for (const type of ['dragenter', 'dragover', 'drop']) {"
+        "  canvas.dispatchEvent(new DragEvent(type,"
+        "    {bubbles: true, cancelable: true, dataTransfer: dt}));"
+        "}")
+
+
+def changed_in_view(before, after, width):
+    """The share of the terrain view's pixels (left of the panel) that changed."""
+    view = max(1, width - PANEL)
+    changed = total = 0
+    for row_a, row_b in zip(before, after):
+        for x in range(0, view, 2):
+            total += 1
+            changed += row_a[x] != row_b[x]
+    return changed / max(total, 1)
+
+
 def without_webgpu(url):
     """Chromium on Linux offers WebGPU only behind a flag: without it the page must say
     that the browser has no WebGPU, and start nothing."""
@@ -276,6 +303,22 @@ def main(page_dir, artifacts):
               f"within 4 px changed, {100 * far:.0f}% within 60 px; screenshots in {artifacts}")
         if inner < 0.8:
             raise RuntimeError("no crater appeared where the page was clicked")
+        level = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "levels",
+                             "caverns.ron")
+        with open(level, encoding="utf-8") as f:
+            drop_file(driver, "caverns.ron", f.read())
+        mark = driver.script("return window.craterfieldFrames()")
+        wait_for("frames after the drop", lambda: driver.script(
+            f"return window.craterfieldFrames() >= {mark + 6}"), START_TIMEOUT_S)
+        dropped_png = driver.screenshot()
+        with open(os.path.join(artifacts, "sandbox-dropped-level.png"), "wb") as f:
+            f.write(dropped_png)
+        _, _, dropped = decode_png(dropped_png)
+        share = changed_in_view(after, dropped, width)
+        print(f"page test: dropped levels/caverns.ron on the page; {100 * share:.0f}% of the "
+              f"terrain view changed")
+        if share < 0.2:
+            raise RuntimeError("the dropped level did not replace the terrain")
         times = sorted(driver.script("return Array.from(window.craterfieldFrameTimes())"))
         at = lambda p: times[max(0, min(len(times), -(-len(times) * p // 100)) - 1)]
         print(f"page test: {len(times)} frame intervals at {width}x{height} (SwiftShader, on "
