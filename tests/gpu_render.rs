@@ -9,6 +9,7 @@ mod common;
 
 use std::path::PathBuf;
 
+use common::craters::{crater, cratered};
 use common::gpu::TestResult;
 use common::shade_steps::shade_steps;
 use craterfield::field2d::{Event, Graph, Level, Terrain};
@@ -25,50 +26,6 @@ use craterfield::visdiff::{DiffOptions, DiffReport, check_golden, compare};
 use glam::Vec2;
 use image::RgbaImage;
 use libtest_mimic::Failed;
-
-/// A level with a few hundred deterministic explosions and fills, so the grid has lists,
-/// air and brick cells.
-fn cratered(level: &Level, count: usize) -> Terrain<Graph> {
-    let mut terrain = level.terrain().expect("terrain");
-    crater(&mut terrain, level, count, 0x9e37_79b9_7f4a_7c15);
-    terrain
-}
-
-/// Applies `count` deterministic explosions and fills (seeded by `seed`) to `terrain`.
-fn crater(terrain: &mut Terrain<Graph>, level: &Level, count: usize, seed: u64) {
-    let b = level.bounds();
-    let mut state = seed;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    };
-    let materials = level.materials().len().max(1) as u16;
-    let mut applied = 0;
-    let mut attempt = 0;
-    while applied < count && attempt < count * 20 {
-        attempt += 1;
-        let x = b.min.x + next() * (b.max.x - b.min.x);
-        let mut y = b.max.y;
-        while y > b.min.y && craterfield::field2d::Sdf::distance(terrain, Vec2::new(x, y)) > 0.0 {
-            y -= 8.0;
-        }
-        let r = 10.0 + next() * 40.0;
-        let e = if attempt % 7 == 6 {
-            Event::fill(
-                Vec2::new(x, y + r * 0.5),
-                r * 0.5,
-                attempt as u16 % materials,
-            )
-        } else {
-            Event::carve(Vec2::new(x, y), r)
-        };
-        if e.is_ok_and(|e| terrain.apply(e).is_ok()) {
-            applied += 1;
-        }
-    }
-}
 
 fn palette(level: &Level) -> Vec<[u8; 3]> {
     level.materials().iter().map(|m| m.color).collect()

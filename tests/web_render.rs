@@ -6,7 +6,10 @@
 
 #![cfg(target_family = "wasm")]
 
-use craterfield::field2d::{Event, Graph, Level, Sdf, Terrain};
+mod common;
+
+use common::craters::cratered;
+use craterfield::field2d::Level;
 use craterfield::gpu::{GpuContext, Offscreen, READBACK_FORMAT, Timestamps};
 use craterfield::render2d::gpu::{Pipeline, TerrainRenderer, render_to_image_async};
 use craterfield::render2d::twin::render_twin;
@@ -22,43 +25,6 @@ wasm_bindgen_test_configure!(run_in_browser);
 
 /// Frames timed for the pass times' tails.
 const TIMED_FRAMES: usize = 30;
-
-/// `count` deterministic explosions and fills on the default level's surface.
-fn cratered(level: &Level, count: usize) -> Terrain<Graph> {
-    let mut terrain = level.terrain().expect("terrain");
-    let b = level.bounds();
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    };
-    let materials = level.materials().len().max(1) as u16;
-    let (mut applied, mut attempt) = (0, 0);
-    while applied < count && attempt < count * 20 {
-        attempt += 1;
-        let x = b.min.x + next() * (b.max.x - b.min.x);
-        let mut y = b.max.y;
-        while y > b.min.y && terrain.distance(Vec2::new(x, y)) > 0.0 {
-            y -= 8.0;
-        }
-        let r = 10.0 + next() * 40.0;
-        let e = if attempt % 7 == 6 {
-            Event::fill(
-                Vec2::new(x, y + r * 0.5),
-                r * 0.5,
-                attempt as u16 % materials,
-            )
-        } else {
-            Event::carve(Vec2::new(x, y), r)
-        };
-        if e.is_ok_and(|e| terrain.apply(e).is_ok()) {
-            applied += 1;
-        }
-    }
-    terrain
-}
 
 fn expect_close(name: &str, gpu: &RgbaImage, cpu: &RgbaImage, tol: &DiffOptions) {
     let report = compare(gpu, cpu, tol).expect("comparable images");

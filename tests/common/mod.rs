@@ -1,9 +1,11 @@
 //! Helpers shared by the integration tests: the one deterministic pseudo-random generator
-//! (SplitMix64, no dependency), scripted inputs, the one GPU test harness (`gpu`), and the
+//! (SplitMix64, no dependency), scripted inputs, the one GPU test harness (`gpu`), cratered terrains for the renderer tests (`craters`), and the
 //! measure of block steps in a rendered shade (`shade_steps`). Each test binary uses part of
 //! it.
 #![allow(dead_code)]
 
+#[cfg(feature = "gpu")]
+pub(crate) mod craters;
 #[cfg(feature = "gpu")]
 #[cfg(not(target_family = "wasm"))]
 pub(crate) mod gpu;
