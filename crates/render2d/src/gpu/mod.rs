@@ -9,7 +9,7 @@
 //! caller's own render pass after [`TerrainRenderer::encode_prepasses`]). Errors are values
 //! of its own type, [`RenderError`], which carries the GPU layer's [`GpuError`] whole.
 //!
-//! Module map: `error` ([`RenderError`]), `uniforms` (plain data shared with WGSL),
+//! Module map: `culling` ([`Culling`]: the part of the level a pipeline covers), `error` ([`RenderError`]), `uniforms` (plain data shared with WGSL),
 //! `grid_mirror` (incremental uploads of the explosion grid), [`shaders`] (WGSL assembly),
 //! `pipelines` (layout entries and pipeline constructors), `renderer` (pipelines and
 //! passes), `refine` (mode refine's proof mirror, buffers and dispatches), `refine_passes`
@@ -18,6 +18,7 @@
 //! device plumbing it shares with the 3D raymarcher (headless context, offscreen targets,
 //! timestamps, the pipeline cache and [`GpuError`]) is [`craterfield_gpu`].
 
+mod culling;
 mod error;
 pub(crate) mod grid_mirror;
 pub(crate) mod pipelines;
@@ -30,6 +31,7 @@ pub mod shaders;
 pub(crate) mod uniforms;
 
 use craterfield_gpu::GpuError;
+pub use culling::Culling;
 pub use error::{RenderError, Unsupported};
 #[cfg(not(target_family = "wasm"))]
 pub use readback::render_to_image;

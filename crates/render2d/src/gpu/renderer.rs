@@ -12,13 +12,13 @@ use craterfield_field::Terrain;
 use craterfield_gpu::PipelineCache;
 use glam::Vec2;
 
-use super::RenderError;
 use super::grid_mirror::{GridMirror, UploadStats, buffer_with};
 use super::pipelines::{fullscreen_pipeline, layout, storage_entry, texture_entry, uniform_entry};
 use super::refine_mode::{RefineDevice, RefineMode};
 use super::refine_passes::{RefineBinds, RefineFieldPipelines, RefineLayouts};
 use super::shaders;
 use super::uniforms::{FrameUniform, MAX_PALETTE, PaletteUniform};
+use super::{Culling, RenderError};
 use crate::twin::RefineStats;
 
 /// Format of the reduced-scale textures: distance, gradient and material (passes 1-2), or
@@ -97,6 +97,7 @@ pub struct TerrainRenderer {
     bind: Option<BindGroups>,
     prepared: Option<Prepared>,
     refine: RefineMode,
+    culling: Culling,
 }
 
 impl Layouts {
@@ -236,6 +237,7 @@ impl TerrainRenderer {
             bind: None,
             prepared: None,
             refine: RefineMode::new(device),
+            culling: Culling::default(),
         })
     }
 
@@ -267,6 +269,17 @@ impl TerrainRenderer {
         self.bind = None;
         self.options = options;
         self.prepared = None;
+    }
+
+    /// Which part of the level the field pipeline covers (by default only what reaches the
+    /// view); takes effect at the next `prepare`.
+    pub fn set_culling(&mut self, culling: Culling) {
+        self.culling = culling;
+    }
+
+    /// The culling in use.
+    pub fn culling(&self) -> Culling {
+        self.culling
     }
 
     /// Field pipeline cache counters: `(hits, misses)`.
@@ -353,7 +366,10 @@ impl TerrainRenderer {
         let emitter: &TerrainEmitter = self
             .emitter
             .insert(current.unwrap_or_else(|| TerrainEmitter::new(terrain.base())));
-        let plan = emitter.plan(Some(lattice_rect(lattice)), terrain.options().band);
+        let plan = emitter.plan(
+            self.culling.rect(lattice_rect(lattice)),
+            terrain.options().band,
+        );
         stats.pipeline_key = plan.key;
         stats.kept_nodes = plan.kept;
         stats.culled_nodes = plan.culled;
