@@ -1,11 +1,12 @@
 //! The renderers on a wgpu 29 device made by the caller, as a Bevy 0.19 game hands over its
 //! `RenderDevice`: the refine renderer draws a cratered level that matches the CPU twin and
 //! the exact render, and the 3D marcher marches a builtin scene that matches the CPU tracer.
-//! This crate's lock resolves wgpu 29 (the project's resolves 30); the library type-checks
+//! This workspace's lock resolves wgpu 29 (the project's resolves 30); the library type-checks
 //! against either, and these tests show it also draws the same pictures on 29.
 //!
 //! Without an adapter the tests report themselves ignored, and fail when `CI` is set.
 
+use bevy::math::Vec2;
 use craterfield::field2d::{Event, Graph, Level, Sdf, Terrain};
 use craterfield::gpu::{READBACK_FORMAT, device_limits};
 use craterfield::march3d::compile::{CompileOptions, emit};
@@ -18,7 +19,6 @@ use craterfield::render2d::{
     Camera, ExactRenderOptions, Reconstruction, RenderOptions, render_exact,
 };
 use craterfield::visdiff::{DiffOptions, compare};
-use glam::Vec2;
 use image::RgbaImage;
 use libtest_mimic::{Arguments, Failed, Trial};
 
