@@ -66,8 +66,10 @@ pub struct FrameCostLog {
     pub record: Vec<Duration>,
     /// Frames drawn.
     pub frames: u64,
-    /// The last error the renderer reported, if any.
+    /// The error of the last frame that could not be prepared, until one is prepared again.
     pub last_error: Option<String>,
+    /// The last error recording the passes reported, if any.
+    pub last_draw_error: Option<String>,
 }
 
 impl FrameCostLog {
@@ -187,7 +189,8 @@ fn prepare_terrain(
         return;
     };
     for (render_entity, camera, transform, terrain_view) in &views {
-        if !camera.is_active {
+        // Inactive, or its target's size not known yet (the first frames of a window).
+        if !camera.is_active || camera.physical_viewport_size().is_none() {
             continue;
         }
         let entity = render_entity.id();
@@ -213,7 +216,10 @@ fn prepare_terrain(
             });
         let took = started.elapsed();
         costs.with(|log| match result {
-            Ok(()) => FrameCostLog::push(&mut log.prepare, took),
+            Ok(()) => {
+                FrameCostLog::push(&mut log.prepare, took);
+                log.last_error = None;
+            }
             Err(e) => {
                 if log.last_error.as_deref() != Some(e.as_str()) {
                     warn!("craterfield: the terrain is not drawn in this camera: {e}");
@@ -333,10 +339,10 @@ fn draw_terrain(
         }
         Err(e) => {
             let e = e.to_string();
-            if log.last_error.as_deref() != Some(e.as_str()) {
+            if log.last_draw_error.as_deref() != Some(e.as_str()) {
                 warn!("craterfield: drawing the terrain failed: {e}");
             }
-            log.last_error = Some(e);
+            log.last_draw_error = Some(e);
         }
     });
 }

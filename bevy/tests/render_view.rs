@@ -134,7 +134,7 @@ fn render_through_bevy(sprite: Option<(Vec2, Vec2, Color)>) -> Result<Rendered, 
         }
     }
     let costs = app.world().resource::<TerrainFrameCosts>().snapshot();
-    if let Some(e) = costs.last_error {
+    if let Some(e) = costs.last_error.or(costs.last_draw_error) {
         return Err(format!("the plugin reported: {e}").into());
     }
     eprintln!("terrain frames drawn: {}", costs.frames);
