@@ -58,6 +58,8 @@ fn opts(cap: usize, res: u32) -> TerrainOptions {
         cell_size: 32.0,
         band: 16.0,
         cell_cap: cap,
+        // Every waiting list bakes at the next advance: these tests check exactness.
+        bakes_per_tick: 1 << 16,
         max_cell_events: cap.max(1 << 16),
         brick_resolution: res,
         max_event_radius: 128.0,
@@ -286,6 +288,15 @@ fn ten_thousand_explosions_keep_query_cost_bounded() {
         let e = Event::carve(c, rng.range(8.0, 200.0)).unwrap();
         t.apply(e).unwrap();
     }
+    // Without a tick, lists wait past the cap, but below twice the cap.
+    let s = t.stats();
+    assert!(s.max_cell_events < 2 * o.cell_cap, "{s:?}");
+    // Advancing bakes them back within the cap.
+    let mut advances = 0;
+    while t.stats().over_cap_cells > 0 && advances < 100 {
+        t.set_tick(t.tick() + 1).unwrap();
+        advances += 1;
+    }
     let s = t.stats();
     assert!(s.max_cell_events <= o.cell_cap, "{s:?}");
     assert_eq!(s.over_cap_cells, 0);
@@ -357,6 +368,82 @@ fn unbakeable_events_cannot_grow_a_cell_past_its_limit() {
             assert!(t.stats().max_cell_events <= o.cell_cap, "{:?}", t.stats());
             t.apply(Event::carve(at, 6.0).unwrap()).unwrap();
         }
+    }
+}
+
+/// No insert pays for a bake until a list reaches twice the cap: lists past the cap wait
+/// for the tick to advance, which bakes at most `bakes_per_tick` cells per tick advanced.
+/// Meanwhile the waiting cells answer exactly (bitwise the brute force), and the same
+/// events at the same ticks give the same bits.
+#[test]
+fn bakes_wait_for_the_tick_and_pending_cells_stay_exact() {
+    let o = TerrainOptions {
+        cell_cap: 8,
+        bakes_per_tick: 2,
+        ..opts(8, 8)
+    };
+    let run = || {
+        let mut t = terrain(hills(), o);
+        let mut bakes_on_insert = Vec::new();
+        for k in 0..15u32 {
+            let at = Vec2::new(-30.0 + 4.0 * k as f32, 5.0 * (k % 3) as f32);
+            let before = t.stats().bakes;
+            t.apply(Event::carve(at, 40.0).unwrap()).unwrap();
+            bakes_on_insert.push(t.stats().bakes - before);
+        }
+        (t, bakes_on_insert)
+    };
+    let (mut t, bakes_on_insert) = run();
+    // Lists of at most 15 (< 2 x 8) never bake on insert.
+    assert!(
+        bakes_on_insert.iter().all(|&b| b == 0),
+        "{bakes_on_insert:?}"
+    );
+    let s = t.stats();
+    assert!(s.over_cap_cells > 2 && s.max_cell_events > 8, "{s:?}");
+    let lattice: Vec<Vec2> = (0..4000)
+        .map(|i| {
+            Vec2::new(
+                -190.0 + (i % 80) as f32 * 4.75,
+                -190.0 + (i / 80) as f32 * 7.6,
+            )
+        })
+        .collect();
+    for &p in &lattice {
+        assert_same(t.sample(p), t.sample_brute_force(p), p);
+    }
+    // Each advance bakes at most its budget, until nothing waits.
+    let mut advances = 0;
+    while t.stats().over_cap_cells > 0 {
+        let before = t.stats().bakes;
+        t.set_tick(t.tick() + 1).unwrap();
+        assert!(t.stats().bakes - before <= 2, "{:?}", t.stats());
+        advances += 1;
+        assert!(advances < 100, "{:?}", t.stats());
+    }
+    assert!(advances > 1, "{advances}");
+    assert!(t.stats().max_cell_events <= 8, "{:?}", t.stats());
+    // A list that reaches twice the cap bakes as its event is applied.
+    let before = t.stats().bakes;
+    for _ in 0..16 {
+        t.apply(Event::carve(Vec2::new(3.0, 4.0), 30.0).unwrap())
+            .unwrap();
+    }
+    assert!(t.stats().bakes > before, "{:?}", t.stats());
+    assert!(t.stats().max_cell_events < 16, "{:?}", t.stats());
+    // The same events at the same ticks: the same bits.
+    let (mut again, _) = run();
+    let mut first = run().0;
+    for k in 1..=advances {
+        again.set_tick(k).unwrap();
+        first.set_tick(k).unwrap();
+    }
+    for &p in &lattice {
+        assert_eq!(
+            again.distance(p).to_bits(),
+            first.distance(p).to_bits(),
+            "{p}"
+        );
     }
 }
 

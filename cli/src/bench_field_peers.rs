@@ -21,6 +21,7 @@ use crate::tails::Tails;
 /// Explosions after which the queries are timed.
 const CHECKPOINTS: [usize; 3] = [0, 1_000, 10_000];
 const EVENT_SEED: u64 = 0x5eed_f1e1d;
+const SWISS_SEED: u64 = 0x5eed_5155;
 
 /// Per-insert times of one implementation: microseconds, and the total in milliseconds.
 #[derive(Serialize)]
@@ -78,11 +79,63 @@ fn mops<T>(items: &[T], mut f: impl FnMut(&T) -> f32) -> f64 {
     items.len() as f64 / t.elapsed().as_secs_f64() * 1e-6
 }
 
-fn carve_timed(terrain: &mut Terrain<Graph>, b: &Blast) -> Result<f64, String> {
+/// One explosion in its own tick, as a game's world applies it: the insert, then the
+/// tick's end, where lists past the cap are baked (`TerrainOptions::bakes_per_tick` at
+/// most). Returns both times, microseconds.
+pub(crate) fn carve_timed(terrain: &mut Terrain<Graph>, b: &Blast) -> Result<(f64, f64), String> {
     let event = Event::carve(b.center, b.radius).map_err(|e| e.to_string())?;
     let t = Instant::now();
     terrain.apply(event).map_err(|e| e.to_string())?;
-    Ok(t.elapsed().as_secs_f64() * 1e6)
+    let insert = t.elapsed().as_secs_f64() * 1e6;
+    let next = terrain.tick() + 1;
+    let t = Instant::now();
+    terrain.set_tick(next).map_err(|e| e.to_string())?;
+    Ok((insert, t.elapsed().as_secs_f64() * 1e6))
+}
+
+/// The insert rows of one barrage: craterfield's inserts, its tick ends, both per
+/// explosion, and the chunked polygon peer (and the whole-level one, when asked).
+fn insert_rows(
+    label: &str,
+    blasts: &[Blast],
+    whole_too: bool,
+) -> Result<Vec<(String, Inserts)>, String> {
+    let mut terrain = field_scene::terrain()?;
+    let mut chunked = PolygonTerrain::new(true);
+    let (mut insert, mut tick_end, mut both, mut chunk_us) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for b in blasts {
+        let (i, e) = carve_timed(&mut terrain, b)?;
+        insert.push(i);
+        tick_end.push(e);
+        both.push(i + e);
+        let t = Instant::now();
+        chunked.carve(b.center, b.radius);
+        chunk_us.push(t.elapsed().as_secs_f64() * 1e6);
+    }
+    let mut rows = vec![
+        (format!("{label}craterfield insert"), Inserts::of(insert)),
+        (
+            format!("{label}craterfield tick end"),
+            Inserts::of(tick_end),
+        ),
+        (format!("{label}craterfield both"), Inserts::of(both)),
+        (
+            format!("{label}i_overlay, 256-unit chunks"),
+            Inserts::of(chunk_us),
+        ),
+    ];
+    if whole_too {
+        let mut whole = PolygonTerrain::new(false);
+        let mut us = Vec::new();
+        for b in blasts {
+            let t = Instant::now();
+            whole.carve(b.center, b.radius);
+            us.push(t.elapsed().as_secs_f64() * 1e6);
+        }
+        rows.push((format!("{label}i_overlay, whole level"), Inserts::of(us)));
+    }
+    Ok(rows)
 }
 
 struct Inputs {
@@ -188,9 +241,7 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
         near: Vec::new(),
         rays: field_scene::rays(13, rays),
     };
-    let mut chunked = PolygonTerrain::new(true);
     let mut whole = PolygonTerrain::new(false);
-    let (mut ours, mut chunk_us, mut whole_us) = (Vec::new(), Vec::new(), Vec::new());
     let mut queries = Vec::new();
     let mut mismatches = Vec::new();
     for (k, b) in blasts.iter().enumerate() {
@@ -200,13 +251,8 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
             queries.push(craterfield_queries(&terrain, k, &inputs)?);
             queries.extend(peer_queries(&terrain, &whole, k, &inputs, &mut mismatches));
         }
-        ours.push(carve_timed(&mut terrain, b)?);
-        let t = Instant::now();
-        chunked.carve(b.center, b.radius);
-        chunk_us.push(t.elapsed().as_secs_f64() * 1e6);
-        let t = Instant::now();
+        carve_timed(&mut terrain, b)?;
         whole.carve(b.center, b.radius);
-        whole_us.push(t.elapsed().as_secs_f64() * 1e6);
     }
     let last = blasts.len();
     eprintln!("  queries after {last} explosions");
@@ -219,8 +265,13 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
         &inputs,
         &mut mismatches,
     ));
-    // The long row on its own terrain, with the comparison's memory given back first.
-    drop((terrain, chunked, whole));
+    // The timed inserts, each barrage on fresh terrains, with the queries' memory given
+    // back first; then the long row.
+    drop((terrain, whole));
+    eprintln!("  inserts");
+    let mut inserts = insert_rows("", &blasts, true)?;
+    let swiss = field_scene::swiss_blasts(SWISS_SEED, blasts.len());
+    inserts.extend(insert_rows("swiss: ", &swiss, false)?);
     eprintln!(
         "  long run: {} explosions",
         crate::bench_field_long::LONG_RUN
@@ -229,11 +280,7 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
     Ok(Comparison {
         points,
         rays,
-        inserts: vec![
-            ("craterfield".into(), Inserts::of(ours)),
-            ("i_overlay, 256-unit chunks".into(), Inserts::of(chunk_us)),
-            ("i_overlay, whole level".into(), Inserts::of(whole_us)),
-        ],
+        inserts,
         queries,
         long_run,
         sign_mismatch: mismatches,
@@ -251,15 +298,18 @@ pub(crate) fn print(c: &Comparison) {
         CHECKPOINTS.last().unwrap_or(&0)
     );
     println!(
-        "{:<28} {:>10} {:>10} {:>10} {:>10} {:>10}",
-        "inserts", "median us", "p95 us", "p99 us", "max us", "total ms"
+        "{:<36} {:>10} {:>10} {:>10} {:>10} {:>10}",
+        "inserts (one explosion per tick)", "median us", "p95 us", "p99 us", "max us", "total ms"
     );
     for (name, i) in &c.inserts {
         println!(
-            "{name:<28} {:>10.2} {:>10.2} {:>10.2} {:>10.1} {:>10.1}",
+            "{name:<36} {:>10.2} {:>10.2} {:>10.2} {:>10.1} {:>10.1}",
             i.us.median, i.us.p95, i.us.p99, i.us.max, i.total_ms
         );
     }
+    println!(
+        "(tick end: the tick's bakes of lists past the cap, at most 16; both: insert + tick end; swiss: the explosions placed anywhere inside the ground)"
+    );
     println!(
         "queries, M/s ({} points uniform in the level or within 16 units of the surface, {} rays of length 2000)",
         c.points, c.rays

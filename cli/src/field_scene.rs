@@ -5,7 +5,7 @@
 //! The solid set is the union of: below `ground(x)` (a height profile sampled every 4 units),
 //! the discs of [`ISLANDS`] and the boxes of [`BOXES`]. 90% of the explosions fall near the
 //! ground (`y = ground(x) + uniform(-120, 20)`), 10% around a random island; radii are
-//! uniform in 20..60.
+//! uniform in 20..60. A second barrage ([`swiss_blasts`]) lands anywhere inside the ground.
 
 use std::collections::BTreeMap;
 
@@ -98,6 +98,23 @@ pub(crate) fn blasts(seed: u64, count: usize) -> Vec<Blast> {
             };
             Blast {
                 center: center.clamp(Vec2::ZERO, Vec2::new(WIDTH, HEIGHT)),
+                radius,
+            }
+        })
+        .collect()
+}
+
+/// `count` explosions placed inside the ground ("swiss"): `x` uniform over the level, `y`
+/// uniform between the bottom and the ground there, radii uniform in 20..60.
+pub(crate) fn swiss_blasts(seed: u64, count: usize) -> Vec<Blast> {
+    let mut rng = Rng::new(seed);
+    (0..count)
+        .map(|_| {
+            let radius = rng.range(20.0, 60.0);
+            let x = rng.range(0.0, WIDTH);
+            let y = rng.range(0.0, ground(x));
+            Blast {
+                center: Vec2::new(x, y),
                 radius,
             }
         })

@@ -84,8 +84,32 @@ impl<F: Sdf> Terrain<F> {
                 c.settled_at = c.settled_at.max(settled_at);
             }
             self.prune_new(cell, idx, &e);
-            self.compact(cell);
+            self.compact_or_defer(cell);
         }
+    }
+
+    /// After an insert into `cell`: a list past the cap waits for the next tick advance
+    /// (no insert pays for a bake), unless it has reached the longest a list may grow
+    /// between advances, twice the cap (or `max_cell_events`).
+    fn compact_or_defer(&mut self, cell: usize) {
+        let o = &self.options;
+        let most = o.cell_cap.saturating_mul(2).min(o.max_cell_events);
+        let len = self.grid.stored_cell(cell).map_or(0, |c| c.events.len());
+        if len <= o.cell_cap {
+            self.over_cap.remove(&cell);
+        } else if len >= most {
+            self.compact(cell);
+        } else {
+            self.over_cap.insert(cell);
+        }
+    }
+
+    /// Whether `cell`'s list starts with a settled event (a bake would take a prefix).
+    pub(super) fn can_bake(&self, cell: usize) -> bool {
+        let first = self.grid.stored_cell(cell).and_then(|c| c.events.first());
+        first
+            .and_then(|&i| self.events.get(i as usize))
+            .is_some_and(|e| e.is_settled(self.tick))
     }
 
     /// Cell reset and covered-event pruning for the event `idx` just appended to `cell`.

@@ -49,10 +49,14 @@
 //!    carves keep the material. Fills are symmetric (with `min`); there the events between
 //!    must be sharp fills and all of them, `A` and `B` included, must share one material.
 //! 3. **Cap.** If a list is still longer than `cell_cap`, its longest settled prefix is baked
-//!    into a brick: the cell's field (state + prefix, clamped) sampled exactly at an
-//!    `(n+1) x (n+1)` lattice (spacing `h = cell_size / n`), values and materials. Queries in
-//!    a brick cell interpolate bilinearly (gradient of the interpolant, material of the
-//!    nearest lattice sample) and then apply the remaining events.
+//!    into a brick when the tick next advances (at most `bakes_per_tick` cells per
+//!    advance, in cell order, so no insert and no tick pays for many), or as the event is
+//!    applied once the list reaches twice the cap; until then queries apply the whole
+//!    list, exactly. The brick is the cell's field (state + prefix, clamped) sampled
+//!    exactly at an `(n+1) x (n+1)` lattice (spacing `h = cell_size / n`), values and
+//!    materials. Queries in a brick cell interpolate bilinearly (gradient of the
+//!    interpolant, material of the nearest lattice sample) and then apply the remaining
+//!    events.
 //!
 //! # What is exact and what is bounded
 //!
@@ -257,9 +261,10 @@ impl<F: Sdf> Terrain<F> {
         Ok(())
     }
 
-    /// Sets the current tick. Moving forwards bakes lists that were waiting for growing
-    /// events to settle; moving backwards rebuilds the grid from the events (cost of a
-    /// replay), which needs the whole history: once compaction has dropped events it is
+    /// Sets the current tick. Moving forwards bakes lists that wait past the cap
+    /// ([`TerrainOptions::bakes_per_tick`] cells per tick advanced); moving backwards
+    /// rebuilds the grid from the events (cost of a replay), which needs the whole
+    /// history: once compaction has dropped events it is
     /// [`TerrainError::HistoryCompacted`] and nothing changes (roll back to a
     /// [`TerrainMark`] instead).
     pub fn set_tick(&mut self, tick: u32) -> Result<(), TerrainError> {
@@ -269,15 +274,31 @@ impl<F: Sdf> Terrain<F> {
             self.rebuild();
         } else if tick > self.tick {
             self.grid.record_tick(self.tick);
+            let advanced = (tick - self.tick) as usize;
             self.tick = tick;
-            let pending: Vec<usize> = self.over_cap.iter().copied().collect();
-            for cell in pending {
-                self.begin_cell_change(cell);
-                self.over_cap.remove(&cell);
-                self.compact(cell);
-            }
+            self.bake_pending(self.options.bakes_per_tick.saturating_mul(advanced));
         }
         Ok(())
+    }
+
+    /// Bakes lists past the cap that can bake (their first event has settled), in cell
+    /// order, at most `budget` of them ([`TerrainOptions::bakes_per_tick`] per tick
+    /// advanced); the rest wait for the next advance.
+    fn bake_pending(&mut self, mut budget: usize) {
+        let mut next = 0;
+        while budget > 0 {
+            let Some(cell) = self.over_cap.range(next..).next().copied() else {
+                break;
+            };
+            next = cell + 1;
+            if !self.can_bake(cell) {
+                continue;
+            }
+            self.begin_cell_change(cell);
+            self.over_cap.remove(&cell);
+            self.compact(cell);
+            budget -= 1;
+        }
     }
 
     /// A revision number never handed out before.

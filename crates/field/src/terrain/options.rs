@@ -15,8 +15,15 @@ pub struct TerrainOptions {
     pub cell_size: f32,
     /// The band `M`: distances are clamped to `[-M, M]`.
     pub band: f32,
-    /// Longest event list a cell keeps before baking a brick.
+    /// Longest event list a cell keeps before baking a brick. A list past it is baked when
+    /// the tick next advances ([`Terrain::set_tick`](super::Terrain::set_tick)), at most
+    /// [`TerrainOptions::bakes_per_tick`] cells per advance, in cell order; only a list
+    /// that reaches twice the cap (or `max_cell_events`) bakes as its event is applied.
     pub cell_cap: usize,
+    /// Cells over the cap baked per tick advance, so that one tick's cost stays bounded
+    /// (the rest wait for the next advance; their queries stay exact meanwhile).
+    #[serde(default = "default_bakes_per_tick")]
+    pub bakes_per_tick: usize,
     /// Longest event list a cell may hold at all. Lists past `cell_cap` bake their settled
     /// prefix, but a growing or not-yet-started event stops the prefix, and every event
     /// after it waits too; an event that would make a list longer than this is refused
@@ -45,6 +52,7 @@ impl Default for TerrainOptions {
             cell_size: 64.0,
             band: 32.0,
             cell_cap: 48,
+            bakes_per_tick: default_bakes_per_tick(),
             max_cell_events: default_max_cell_events(),
             brick_resolution: 32,
             max_event_radius: 512.0,
@@ -57,6 +65,10 @@ impl Default for TerrainOptions {
 
 fn default_max_cell_events() -> usize {
     256
+}
+
+fn default_bakes_per_tick() -> usize {
+    2
 }
 
 fn check_positive(name: &'static str, value: f32, limit: f32) -> Result<(), TerrainError> {
@@ -106,6 +118,13 @@ impl TerrainOptions {
         if self.cell_cap == 0 {
             return Err(TerrainError::BadOption {
                 name: "cell_cap",
+                value: "0".into(),
+                reason: "must be at least 1",
+            });
+        }
+        if self.bakes_per_tick == 0 {
+            return Err(TerrainError::BadOption {
+                name: "bakes_per_tick",
                 value: "0".into(),
                 reason: "must be at least 1",
             });
