@@ -24,6 +24,10 @@ use crate::terrain::grid::{self, CellState, MaterialSource, Rect};
 use craterfield_core::backend::{Backend, BackendError};
 use craterfield_core::simd::{self, Kernel, Lanes};
 
+/// Cells with fewer points than this are answered on the point path (see
+/// [`Terrain::batch`]).
+const SPARSE: usize = 4;
+
 /// Points of one cell (`None`: outside the grid), as a range of the sorted order.
 struct Group {
     cell: Option<usize>,
@@ -210,7 +214,10 @@ impl<F: Sdf> Terrain<F> {
 
     /// What both batch queries do first: check the lengths, answer every point one at a
     /// time when the base has no tapes (`None`), else answer the NaN points (whose result
-    /// is fixed) and group the rest by cell.
+    /// is fixed) and group the rest by cell. Cells with fewer than [`SPARSE`] points are
+    /// answered one point at a time too (the same bits): a block of lanes applies a busy
+    /// cell's whole event list for every lane, used or not, which for one scattered
+    /// point (a body's probe) cost several times the point path.
     #[allow(clippy::type_complexity)]
     fn batch<T>(
         &self,
@@ -230,7 +237,16 @@ impl<F: Sdf> Terrain<F> {
                 *o = single(p);
             }
         }
-        let (order, groups) = self.group(points);
+        let (order, mut groups) = self.group(points);
+        groups.retain(|g| {
+            let sparse = g.end - g.start < SPARSE;
+            if sparse {
+                for &i in &order[g.start..g.end] {
+                    out[i as usize] = single(points[i as usize]);
+                }
+            }
+            !sparse
+        });
         Ok(Some((cell_tapes, order, groups)))
     }
 
