@@ -43,9 +43,12 @@ impl Spread {
 #[derive(Serialize)]
 pub(crate) struct LongRun {
     explosions: usize,
-    /// Per-insert microseconds, and their mean.
+    /// Microseconds per explosion of the insert, of its tick's end (the bakes), and of
+    /// both, each with its mean.
     insert_us: Spread,
-    insert_mean_us: f64,
+    tick_end_us: Spread,
+    both_us: Spread,
+    means_us: [f64; 3],
     total_s: f64,
     /// Events the terrain keeps (the rest were compacted away) of those it applied, bricks,
     /// and the most events a cell lists.
@@ -71,12 +74,14 @@ pub(crate) fn run(points: usize) -> Result<LongRun, String> {
     let blasts = field_scene::blasts(LONG_SEED, LONG_RUN);
     let rss_before = process_memory_mib("VmRSS:");
     let mut terrain = field_scene::terrain()?;
-    let mut us = Vec::with_capacity(LONG_RUN);
+    let mut us = [(); 3].map(|()| Vec::with_capacity(LONG_RUN));
     let start = Instant::now();
     for (k, b) in blasts.iter().enumerate() {
         let (insert, tick_end) = crate::bench_field_peers::carve_timed(&mut terrain, b)
             .map_err(|e| format!("explosion {k} of the long row: {e}"))?;
-        us.push(insert + tick_end);
+        us[0].push(insert);
+        us[1].push(tick_end);
+        us[2].push(insert + tick_end);
     }
     let total_s = start.elapsed().as_secs_f64();
     drop(blasts);
@@ -89,8 +94,10 @@ pub(crate) fn run(points: usize) -> Result<LongRun, String> {
     let stats = terrain.stats();
     Ok(LongRun {
         explosions: LONG_RUN,
-        insert_mean_us: us.iter().sum::<f64>() / us.len().max(1) as f64,
-        insert_us: Spread::of(us),
+        means_us: [0, 1, 2].map(|k| us[k].iter().sum::<f64>() / us[k].len().max(1) as f64),
+        insert_us: Spread::of(std::mem::take(&mut us[0])),
+        tick_end_us: Spread::of(std::mem::take(&mut us[1])),
+        both_us: Spread::of(std::mem::take(&mut us[2])),
         total_s,
         events_kept: terrain.events().len(),
         events_applied: terrain.events_applied(),
@@ -144,16 +151,17 @@ pub(crate) fn print(r: &LongRun) {
         "{:<28} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}",
         "", "mean", "median", "p95", "p99", "p99.9", "max"
     );
-    println!(
-        "{:<28} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.1}",
-        "insert + tick end us",
-        r.insert_mean_us,
-        r.insert_us.tails.median,
-        r.insert_us.tails.p95,
-        r.insert_us.tails.p99,
-        r.insert_us.p999,
-        r.insert_us.tails.max
-    );
+    let rows = [
+        ("insert us", &r.insert_us),
+        ("tick end us", &r.tick_end_us),
+        ("both us", &r.both_us),
+    ];
+    for ((name, t), mean) in rows.into_iter().zip(r.means_us) {
+        println!(
+            "{name:<28} {mean:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.1}",
+            t.tails.median, t.tails.p95, t.tails.p99, t.p999, t.tails.max
+        );
+    }
     for (name, q) in [
         ("distance ns, uniform", &r.distance_uniform),
         ("distance ns, near", &r.distance_near),

@@ -2,14 +2,16 @@
 //! otherwise keep, on the same level, the same explosions, points and rays, in one run
 //! (`field_scene` makes the inputs, `peers_field` the polygon side; feature `peers`).
 //!
-//! Inserts: per-explosion time (median, p95, p99, max, total). Queries, one thread, at 0,
+//! Inserts, one explosion per tick: the insert's time, its tick's end (where lists past
+//! the cap bake) and both (median, p95, p99, max, total), on the barrage and on a second
+//! one placed inside the ground, beside the polygon peers. Queries, one thread, at 0,
 //! 1,000 and 10,000 explosions: single-point distance, distance + gradient and inside on
 //! points uniform in the level and near the ground, batch distances, and raycasts. Then
 //! the long row (`bench_field_long`): a million explosions into one terrain.
 
 use std::time::Instant;
 
-use craterfield::field2d::query::{RayOptions, inside, raycast};
+use craterfield::field2d::query::{RayOptions, inside, raycast, sweep_circle};
 use craterfield::field2d::{Event, Graph, Sdf, Terrain};
 use glam::Vec2;
 use serde::Serialize;
@@ -22,6 +24,8 @@ use crate::tails::Tails;
 const CHECKPOINTS: [usize; 3] = [0, 1_000, 10_000];
 const EVENT_SEED: u64 = 0x5eed_f1e1d;
 const SWISS_SEED: u64 = 0x5eed_5155;
+/// Radius of the circles swept along the rays.
+const SWEEP_RADIUS: f32 = 2.0;
 
 /// Per-insert times of one implementation: microseconds, and the total in milliseconds.
 #[derive(Serialize)]
@@ -52,6 +56,8 @@ pub(crate) struct Queries {
     inside_uniform: Option<f64>,
     batch_distance_uniform: Option<f64>,
     raycast: Option<f64>,
+    /// Circles of radius [`SWEEP_RADIUS`] swept along the same rays.
+    sweep: Option<f64>,
 }
 
 /// The whole comparison.
@@ -178,6 +184,13 @@ fn craterfield_queries(
                 .flatten()
                 .map_or(0.0, |h| h.t)
         })),
+        sweep: Some(mops(&inputs.rays, |r| {
+            let to = r.origin + r.dir * r.length;
+            sweep_circle(terrain, r.origin, to, SWEEP_RADIUS, &opts)
+                .ok()
+                .flatten()
+                .map_or(0.0, |h| h.toi)
+        })),
     })
 }
 
@@ -226,6 +239,11 @@ fn peer_queries(
             distance_near: Some(mops(&inputs.near, |&p| parry.distance(p))),
             raycast: Some(mops(&inputs.rays, |r| {
                 parry.raycast(r.origin, r.dir, r.length).unwrap_or(0.0)
+            })),
+            sweep: Some(mops(&inputs.rays, |r| {
+                parry
+                    .sweep(r.origin, r.dir, r.length, SWEEP_RADIUS)
+                    .unwrap_or(0.0)
             })),
             ..Queries::default()
         },
@@ -308,14 +326,15 @@ pub(crate) fn print(c: &Comparison) {
         );
     }
     println!(
-        "(tick end: the tick's bakes of lists past the cap, at most 16; both: insert + tick end; swiss: the explosions placed anywhere inside the ground)"
+        "(tick end: the tick's bakes of lists past the cap, at most {} (TerrainOptions::bakes_per_tick); both: insert + tick end; swiss: the explosions placed anywhere inside the ground)",
+        craterfield::field2d::TerrainOptions::default().bakes_per_tick
     );
     println!(
-        "queries, M/s ({} points uniform in the level or within 16 units of the surface, {} rays of length 2000)",
+        "queries, M/s ({} points uniform in the level or within 16 units of the surface, {} rays of length 2000, and circles of radius 2 swept along them)",
         c.points, c.rays
     );
     println!(
-        "{:>10} {:<18} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "{:>10} {:<18} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
         "explosions",
         "implementation",
         "dist uni",
@@ -324,11 +343,12 @@ pub(crate) fn print(c: &Comparison) {
         "grad near",
         "inside",
         "batch",
-        "raycast"
+        "raycast",
+        "sweep r2"
     );
     for q in &c.queries {
         println!(
-            "{:>10} {:<18} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+            "{:>10} {:<18} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
             q.explosions,
             q.implementation,
             cell(q.distance_uniform),
@@ -337,7 +357,8 @@ pub(crate) fn print(c: &Comparison) {
             cell(q.gradient_near),
             cell(q.inside_uniform),
             cell(q.batch_distance_uniform),
-            cell(q.raycast)
+            cell(q.raycast),
+            cell(q.sweep)
         );
     }
     println!(

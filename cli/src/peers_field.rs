@@ -9,15 +9,16 @@
 //!   it; the distance is the nearest listed edge's, clamped at [`CLAMP`], signed by the
 //!   side of that edge (contours are counter-clockwise around solid) or, in a cell with no
 //!   edges, by the cell's inside flag. Gradients come from the nearest point.
-//! * parry2d: one `Polyline` of every edge; unsigned distance and ray casts.
+//! * parry2d: one `Polyline` of every edge; unsigned distance, ray casts and circle casts.
 
 use glam::Vec2;
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::Overlay;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
-use parry2d::query::{PointQuery, Ray, RayCast};
-use parry2d::shape::Polyline;
+use parry2d::math::Pose;
+use parry2d::query::{PointQuery, Ray, RayCast, ShapeCastOptions, cast_shapes};
+use parry2d::shape::{Ball, Polyline};
 
 use crate::field_scene::{self, BOXES, HEIGHT, ISLANDS, WIDTH};
 
@@ -265,6 +266,26 @@ impl ParryPolyline {
     pub(crate) fn distance(&self, p: Vec2) -> f32 {
         self.0
             .distance_to_local_point(parry2d::math::Vector::new(p.x, p.y), false)
+    }
+
+    /// How far a circle of `radius` moves from `origin` along the unit `dir` before it
+    /// touches an edge, within `length`.
+    pub(crate) fn sweep(&self, origin: Vec2, dir: Vec2, length: f32, radius: f32) -> Option<f32> {
+        let options = ShapeCastOptions::with_max_time_of_impact(length);
+        let ball = Ball::new(radius);
+        let at = Pose::translation(origin.x, origin.y);
+        let velocity = parry2d::math::Vector::new(dir.x, dir.y);
+        let zero = parry2d::math::Vector::new(0.0, 0.0);
+        let hit = cast_shapes(
+            &at,
+            velocity,
+            &ball,
+            &Pose::identity(),
+            zero,
+            &self.0,
+            options,
+        );
+        hit.ok().flatten().map(|h| h.time_of_impact)
     }
 
     /// The distance along the ray to the first edge it meets, within `length`.
