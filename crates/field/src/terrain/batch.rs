@@ -424,11 +424,7 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
                 }
                 let mut mats = [l.splat_i(0); NB];
                 let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
-                for e in events {
-                    for r in 0..NB {
-                        (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
-                    }
-                }
+                apply_values(l, events, &mut ds, &mut mats, &ps, band);
                 for (r, d) in ds.iter().enumerate() {
                     l.store(d.0, &mut lanes);
                     for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
@@ -586,11 +582,7 @@ impl<F: Sdf> Kernel for Bake<'_, F> {
                 *p = lane_point(l, pts, r);
             }
             let (mut ds, mut mats) = start_with_materials(l, t, &start, cell, &mut block, pts, &ps);
-            for e in &events {
-                for r in 0..NB {
-                    (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
-                }
-            }
+            apply_values(l, &events, &mut ds, &mut mats, &ps, band);
             for r in 0..NB {
                 l.store(ds[r].0, &mut v);
                 l.store_i(mats[r], &mut mat_lanes);
@@ -673,6 +665,33 @@ struct Prepared {
     radius: f32,
     rim: f32,
     material: MaterialId,
+}
+
+/// `events` in order on registers of values (no gradients), skipping a carve for a
+/// register whose every lane is exactly `+M`: a carve only raises the value and the clamp
+/// brings it back to `M`, with the material kept, so it changes no bit there. Most of a
+/// crater cell's lattice is carved-out air, where the later carves of its list would
+/// otherwise each cost a square root per lane.
+#[inline(always)]
+fn apply_values<L: Lanes, const NB: usize>(
+    l: L,
+    events: &[Prepared],
+    ds: &mut [Fv<L>; NB],
+    mats: &mut [L::I; NB],
+    ps: &[P2<Fv<L>>; NB],
+    band: f32,
+) {
+    let top = l.splat(band);
+    for e in events {
+        for r in 0..NB {
+            let d = ds[r].0;
+            let at_top = l.and(l.ge(d, top), l.le(d, top));
+            if e.kind == EventKind::Carve && !l.any(l.not(at_top)) {
+                continue;
+            }
+            (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
+        }
+    }
 }
 
 /// `terrain::field::apply_event` on lanes.
