@@ -6,7 +6,7 @@ use glam::Vec2;
 
 use super::Terrain;
 use super::cell_tapes::{CellTape, CellTapes};
-use super::field::{Lift, apply_event};
+use super::field::{Lift, apply_event, apply_unless_top};
 use super::grid::{CellState, MaterialSource};
 use crate::exec;
 use crate::sample::{MaterialId, Sample};
@@ -100,7 +100,7 @@ impl<F: Sdf> Terrain<F> {
         };
         for &i in c.events.iter().take(upto) {
             if let Some(e) = self.events.get(i as usize) {
-                (d, mat) = apply_event(d, mat, pn, e, self.tick, m);
+                (d, mat) = apply_unless_top(d, mat, pn, e, self.tick, m);
             }
         }
         (d, mat)

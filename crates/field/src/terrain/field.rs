@@ -22,6 +22,9 @@ pub(super) trait Lift: Num {
     fn base<F: Sdf>(f: &F, p: Vec2, material: bool) -> (Self, MaterialId);
     /// The same from the base's tapes for the region holding `p`.
     fn tape(plan: &CellTape, p: Vec2, material: bool) -> (Self, MaterialId);
+    /// Whether this is exactly the band's top, `+M` with a `+0` gradient: what the clamp
+    /// makes of every value above it, so a carve (which only raises) leaves it as it is.
+    fn is_top(self, band: f32) -> bool;
 }
 
 impl Lift for f32 {
@@ -35,6 +38,9 @@ impl Lift for f32 {
         } else {
             (f.distance(p), 0)
         }
+    }
+    fn is_top(self, band: f32) -> bool {
+        self == band
     }
     fn tape(plan: &CellTape, p: Vec2, material: bool) -> (f32, MaterialId) {
         if material {
@@ -65,6 +71,9 @@ impl Lift for Dual {
     fn tape(plan: &CellTape, p: Vec2, _material: bool) -> (Dual, MaterialId) {
         exec::point::dual(&plan.material, p)
     }
+    fn is_top(self, band: f32) -> bool {
+        self.v == band && self.dx.to_bits() == 0 && self.dy.to_bits() == 0
+    }
 }
 
 /// Smooth minimum (see the module doc); the select keeps `min`'s bits where `h == 0`.
@@ -87,6 +96,24 @@ pub(super) fn smax<N: Num>(a: N, b: N, k: f32) -> N {
     } else {
         m
     }
+}
+
+/// [`apply_event`], except a carve on the band's top ([`Lift::is_top`]), where it changes
+/// no bit (it only raises, the clamp brings it back, the material stays): air cells and
+/// carved-out points skip their later carves.
+#[inline]
+pub(super) fn apply_unless_top<N: Lift>(
+    d: N,
+    mat: MaterialId,
+    p: V2<N>,
+    e: &Event,
+    tick: u32,
+    band: f32,
+) -> (N, MaterialId) {
+    if e.kind == EventKind::Carve && d.is_top(band) {
+        return (d, mat);
+    }
+    apply_event(d, mat, p, e, tick, band)
 }
 
 /// Applies one event at `p` (the field definition's loop body).
