@@ -682,11 +682,11 @@ fn apply_values<L: Lanes, const NB: usize>(
     band: f32,
 ) {
     let top = l.splat(band);
+    let all_at_top = |d: L::F| !l.any(l.not(l.and(l.ge(d, top), l.le(d, top))));
     for e in events {
+        let carve = e.kind == EventKind::Carve;
         for r in 0..NB {
-            let d = ds[r].0;
-            let at_top = l.and(l.ge(d, top), l.le(d, top));
-            if e.kind == EventKind::Carve && !l.any(l.not(at_top)) {
+            if carve && all_at_top(ds[r].0) {
                 continue;
             }
             (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
