@@ -1,5 +1,7 @@
 //! The GPU raymarcher on whatever adapter wgpu finds (Mesa's lavapipe in CI): each scene
-//! rendered on the GPU against the CPU tracer with the visual diff, the shader cache, the
+//! rendered on the GPU against the CPU tracer with the visual diff, the views the CPU tracer
+//! is held to in `march3d_fidelity` (the reference renderer's pictures, LOD on against off,
+//! no sky below the horizon at grazing cameras), the shader cache, the
 //! caller's-encoder path, errors for bad input, and the shader budget that keeps plans too
 //! large for a GPU compiler off the driver.
 //!
@@ -9,6 +11,7 @@
 
 mod common;
 mod march3d_plans;
+mod march3d_views;
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -582,10 +585,85 @@ fn encoding_into_the_callers_texture_matches(ctx: &GpuContext) -> TestResult {
     Ok(())
 }
 
+/// A GPU render of `plan` at `size`.
+fn render_sized(
+    ctx: &GpuContext,
+    plan: &Plan,
+    camera: &craterfield::march3d::Camera3d,
+    (w, h): (u32, u32),
+) -> Result<Vec<u8>, MarchGpuError> {
+    marcher(ctx)?.render_to_rgba(plan, camera, w, h)
+}
+
+fn paper_scenes_match_the_reference_on_the_gpu(ctx: &GpuContext) -> TestResult {
+    use march3d_views::{PAPER_SCENES, REFERENCE_MAX_FLIP, REFERENCE_SIZE, against_reference};
+    for name in PAPER_SCENES {
+        phase(format!("{name}: GPU render at the reference's size"));
+        let (plan, camera) = march3d_views::plan(name, &CompileOptions::paper(), REFERENCE_SIZE);
+        let rgba = render_sized(ctx, &plan, &camera, REFERENCE_SIZE)?;
+        let report = against_reference(name, rgba);
+        eprintln!(
+            "{name}: FLIP {:.4} against the reference's picture",
+            report.flip
+        );
+        if report.flip > REFERENCE_MAX_FLIP {
+            return Err(format!("{name}: FLIP {} > {REFERENCE_MAX_FLIP}", report.flip).into());
+        }
+    }
+    Ok(())
+}
+
+fn lod_cannot_be_seen_on_the_gpu(ctx: &GpuContext) -> TestResult {
+    use march3d_views::{LOD_LEVELS, LOD_MAX_FRACTION, VIEW_SIZE, lod_difference, lod_pairs};
+    for (name, [on, off]) in lod_pairs() {
+        phase(format!("{name}: LOD on and off"));
+        let image = |(plan, camera): &(Plan, craterfield::march3d::Camera3d)| {
+            render_sized(ctx, plan, camera, VIEW_SIZE)
+                .map(|rgba| RgbaImage::from_raw(VIEW_SIZE.0, VIEW_SIZE.1, rgba))
+        };
+        let (img_on, img_off) = (image(&on)?.ok_or("size")?, image(&off)?.ok_or("size")?);
+        let report = lod_difference(&img_on, &img_off);
+        eprintln!(
+            "{name}: {:.3}% of pixels more than {LOD_LEVELS} levels apart",
+            report.differing_fraction * 100.0
+        );
+        if report.differing_fraction > LOD_MAX_FRACTION {
+            return Err(format!("{name}: LOD visible: {}", report.failure_summary()).into());
+        }
+    }
+    Ok(())
+}
+
+fn grazing_rays_never_draw_sky_on_the_gpu(ctx: &GpuContext) -> TestResult {
+    use march3d_views::{VIEW_SIZE, grazing_views, sky_below_horizon};
+    for (name, plan, camera) in grazing_views() {
+        phase(format!("{name}: GPU render"));
+        let rgba = render_sized(ctx, &plan, &camera, VIEW_SIZE)?;
+        let img = RgbaImage::from_raw(VIEW_SIZE.0, VIEW_SIZE.1, rgba).ok_or("size")?;
+        let leaks = sky_below_horizon(&img, &camera, &plan);
+        if leaks > 0 {
+            return Err(format!("{name}: {leaks} sky pixels below the horizon").into());
+        }
+    }
+    Ok(())
+}
+
 fn main() {
     common::gpu::run_with(
         &[
             ("gpu_matches_the_cpu_tracer", gpu_matches_the_cpu_tracer),
+            (
+                "paper_scenes_match_the_reference_on_the_gpu",
+                paper_scenes_match_the_reference_on_the_gpu,
+            ),
+            (
+                "lod_cannot_be_seen_on_the_gpu",
+                lod_cannot_be_seen_on_the_gpu,
+            ),
+            (
+                "grazing_rays_never_draw_sky_on_the_gpu",
+                grazing_rays_never_draw_sky_on_the_gpu,
+            ),
             (
                 "sin_hash_matches_the_cpu_on_a_software_adapter",
                 sin_hash_matches_the_cpu_on_a_software_adapter,

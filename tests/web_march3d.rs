@@ -47,6 +47,7 @@ async fn every_builtin_scene_marches_on_webgpu_as_on_the_cpu() {
         };
         let opts = CompileOptions {
             aspect: SIZE.0 as f32 / SIZE.1 as f32,
+            height: SIZE.1,
             ..preset
         };
         let plan = emit(&scene, &camera, &opts).expect("emit");

@@ -125,6 +125,7 @@ fn marcher_draws_the_tracer(gpu: &CallerDevice) -> Result<(), Failed> {
     let camera = scene.camera.camera()?;
     let options = CompileOptions {
         aspect: SIZE.0 as f32 / SIZE.1 as f32,
+        height: SIZE.1,
         ..CompileOptions::default()
     };
     let plan = emit(&scene, &camera, &options)?;

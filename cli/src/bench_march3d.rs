@@ -5,10 +5,17 @@
 //!    path, one thread and all threads; GFLOP per frame from the counting backend (one flop
 //!    per arithmetic operation or math-library call, the paper's convention); flops per
 //!    cycle from those and the measured time at the stated clock.
+//!    With `--reference BIN` (repeatable), the reference renderer's binaries run on the same
+//!    scenes in the same run (`bench_reference3d`), and each row shows the fastest one's
+//!    time over ours. The FLIP of our pictures against the reference's vendored pictures
+//!    (and against each binary's output) is printed.
 //! 2. The forest world: SDF evaluations and march steps per pixel (counting backend) and
 //!    GPU frame time with every emitter optimization on, all off (naive), and each one off,
 //!    plus the visual difference of the optimized render against the naive one.
+//! 3. Every builtin scene on the GPU at `--gpu-size` (1920x1080): the first frame, pipeline
+//!    creation included, and the next.
 
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -22,6 +29,7 @@ use craterfield::march3d::{Camera3d, Plan};
 use craterfield::visdiff::{DiffOptions, compare};
 use serde::Serialize;
 
+use crate::bench_reference3d::{self as reference, Fidelity, RefRow};
 use crate::march3d_cmd::{parse_size, plan_for};
 
 /// Options of `bench march3d`.
@@ -46,6 +54,30 @@ pub(crate) struct Options {
     /// Skip the scalar path (it takes tens of seconds per frame).
     #[arg(long)]
     pub no_scalar: bool,
+    /// A reference renderer binary to time beside ours (repeatable; `scripts/reference-march3d`
+    /// builds one).
+    #[arg(long)]
+    pub reference: Vec<PathBuf>,
+    /// The reference renderer's pictures of scene0 and mandelbulb.
+    #[arg(long, default_value = "tests/data/march3d-reference")]
+    pub pictures: PathBuf,
+    /// Size of the GPU frame of every builtin scene.
+    #[arg(long, default_value = "1920x1080")]
+    pub gpu_size: String,
+    /// Skip the GPU frames of the builtin scenes.
+    #[arg(long)]
+    pub no_gpu_frames: bool,
+}
+
+/// One builtin scene's GPU frames.
+#[derive(Serialize)]
+struct GpuFrame {
+    scene: String,
+    nodes: usize,
+    /// The first frame, pipeline creation included (wall clock).
+    first_ms: f64,
+    /// The next frame (GPU timestamps where the adapter has them).
+    ms: f64,
 }
 
 #[derive(Serialize)]
@@ -79,9 +111,13 @@ struct Report {
     clock_source: String,
     adapter: String,
     rows: Vec<Row>,
+    reference: Vec<RefRow>,
+    fidelity: Vec<Fidelity>,
     emitter: Vec<EmitterRow>,
     world_size: String,
     naive_vs_all: Option<VisualDiff>,
+    gpu_size: String,
+    gpu_frames: Vec<GpuFrame>,
 }
 
 #[derive(Serialize)]
@@ -127,6 +163,78 @@ fn time_cpu(
     Ok(median(s))
 }
 
+/// Our picture of each paper scene (widest instruction set, all threads) against the
+/// vendored reference pictures and each reference binary's last output.
+fn fidelity_rows(o: &Options) -> Result<Vec<Fidelity>, String> {
+    let size = parse_size(&o.size)?;
+    let mut out = Vec::new();
+    for name in ["scene0", "mandelbulb"] {
+        let scene = Scene::builtin(name).map_err(|e| e.to_string())?;
+        let (plan, cam) = plan_for(&scene, &CompileOptions::paper(), size)?;
+        let ours = cpu::render(&plan, &cam, size.0, size.1, &TraceOptions::default())
+            .map_err(|e| e.to_string())?;
+        let ours = image::RgbaImage::from_raw(size.0, size.1, ours.rgba).ok_or("bad image")?;
+        let vendored = o.pictures.join(format!("{name}.png"));
+        let mut against: Vec<(String, PathBuf)> = Vec::new();
+        if vendored.exists() {
+            against.push((vendored.display().to_string(), vendored));
+        } else {
+            eprintln!(
+                "  no {}: FLIP against the vendored picture skipped",
+                vendored.display()
+            );
+        }
+        against.extend(o.reference.iter().map(|b| {
+            (
+                format!("the picture of ref {}", reference::label(b)),
+                reference::reference_output(b, name),
+            )
+        }));
+        for (what, path) in against {
+            out.push(reference::fidelity(name, &ours, (&what, &path))?);
+        }
+    }
+    Ok(out)
+}
+
+/// Every builtin scene on the GPU at `--gpu-size`, with its own preset.
+fn gpu_frames(o: &Options, gpu: &mut Option<Gpu>) -> Result<Vec<GpuFrame>, String> {
+    let Some(g) = gpu else {
+        return Ok(Vec::new());
+    };
+    if o.no_gpu_frames {
+        return Ok(Vec::new());
+    }
+    let size = parse_size(&o.gpu_size)?;
+    let mut out = Vec::new();
+    for name in craterfield::march3d::scene::BUILTIN {
+        let scene = Scene::builtin(name).map_err(|e| e.to_string())?;
+        let opts = crate::march3d_cmd::preset(&scene, None, &[])?;
+        let (plan, cam) = plan_for(&scene, &opts, size)?;
+        let t = Instant::now();
+        match g.marcher.render_timed(&plan, &cam, size.0, size.1) {
+            Err(e @ MarchGpuError::TooLarge { .. }) => {
+                eprintln!("  {name}: refused on the GPU: {e}");
+                continue;
+            }
+            first => first.map_err(|e| e.to_string())?,
+        };
+        let first_ms = t.elapsed().as_secs_f64() * 1e3;
+        let (_, ms) = g
+            .marcher
+            .render_timed(&plan, &cam, size.0, size.1)
+            .map_err(|e| e.to_string())?;
+        eprintln!("  {name} on the GPU at {}: {ms:.1} ms", o.gpu_size);
+        out.push(GpuFrame {
+            scene: name.to_string(),
+            nodes: plan.nodes.len(),
+            first_ms,
+            ms,
+        });
+    }
+    Ok(out)
+}
+
 fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, String> {
     let size = parse_size(&o.size)?;
     let best = simd::best();
@@ -142,11 +250,15 @@ fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, Str
             threads.push(all_threads);
         }
         let mut scalar_s = Vec::new();
-        let isas: Vec<Backend> = if o.no_scalar || best == Backend::Scalar {
-            vec![best]
-        } else {
-            vec![Backend::Scalar, best]
-        };
+        // AVX2 beside a wider best: the reference renderer is AVX2 code.
+        let mut isas: Vec<Backend> = Vec::new();
+        if !o.no_scalar && best != Backend::Scalar {
+            isas.push(Backend::Scalar);
+        }
+        if best == Backend::Avx512 && Backend::Avx2.is_available() {
+            isas.push(Backend::Avx2);
+        }
+        isas.push(best);
         for isa in isas {
             for (k, &t) in threads.iter().enumerate() {
                 let frames = if isa == Backend::Scalar { 1 } else { o.frames };
@@ -291,16 +403,23 @@ pub(crate) fn run(o: &Options) -> Result<ExitCode, String> {
     let adapter = gpu
         .as_ref()
         .map_or_else(|| "none".to_string(), |g| g.ctx.describe());
+    let reference = reference::reference_rows(&o.reference, &o.pictures, threads, o.frames)?;
     let rows = paper_rows(o, ghz, threads)?;
+    let fidelity = fidelity_rows(o)?;
     let (emitter, naive_vs_all) = emitter_rows(o, &mut gpu)?;
+    let gpu_frames = gpu_frames(o, &mut gpu)?;
     let report = Report {
         clock_ghz: ghz,
         clock_source,
         adapter,
         rows,
+        reference,
+        fidelity,
         emitter,
         world_size: o.world_size.clone(),
         naive_vs_all,
+        gpu_size: o.gpu_size.clone(),
+        gpu_frames,
     };
     if o.json {
         println!(
@@ -313,35 +432,35 @@ pub(crate) fn run(o: &Options) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The reference implementation's seconds per frame on this machine class (C, gcc -O3
-/// -mavx2 -mfma): one thread and two threads with OpenMP, and its scalar baseline.
-fn reference(scene: &str) -> (f64, f64, f64) {
-    match scene {
-        "scene0" => (1.47, 0.95, 32.9),
-        _ => (2.16, 1.14, 25.4),
-    }
-}
-
 fn print_tables(r: &Report, o: &Options) {
     println!(
         "bench march3d: paper preset at {}, clock {:.3} GHz ({})",
         o.size, r.clock_ghz, r.clock_source
     );
     println!(
-        "{:<11} {:<7} {:>7} {:>9} {:>8} {:>12} {:>10} {:>14}",
-        "scene", "impl", "threads", "s/frame", "GFLOP", "flops/cycle", "vs scalar", "target s"
+        "{:<11} {:<28} {:>7} {:>9} {:>8} {:>12} {:>10} {:>13}",
+        "scene", "impl", "threads", "s/frame", "GFLOP", "flops/cycle", "vs scalar", "vs reference"
     );
-    for row in &r.rows {
-        let (one, two, _) = reference(&row.scene);
-        let target = if row.implementation == "scalar" {
-            "-".to_string()
-        } else if row.threads == 1 {
-            format!("<= {:.3}", one / 2.0)
-        } else {
-            format!("<= {:.3}", two / 2.0)
-        };
+    for row in &r.reference {
         println!(
-            "{:<11} {:<7} {:>7} {:>9.3} {:>8.2} {:>12.3} {:>10} {:>14}",
+            "{:<11} {:<28} {:>7} {:>9.3} {:>8} {:>12} {:>10} {:>13}",
+            row.scene,
+            format!("ref {}", row.binary),
+            row.threads,
+            row.s_per_frame,
+            "-",
+            "-",
+            "-",
+            "-"
+        );
+    }
+    for row in &r.rows {
+        let vs = reference::best(&r.reference, &row.scene, row.threads)
+            .map_or("-".to_string(), |b| {
+                format!("{:.2}x", b.s_per_frame / row.s_per_frame)
+            });
+        println!(
+            "{:<11} {:<28} {:>7} {:>9.3} {:>8.2} {:>12.3} {:>10} {:>13}",
             row.scene,
             row.implementation,
             row.threads,
@@ -350,7 +469,40 @@ fn print_tables(r: &Report, o: &Options) {
             row.flops_per_cycle,
             row.speedup_vs_scalar
                 .map_or("-".to_string(), |s| format!("{s:.1}x")),
-            target
+            vs
+        );
+    }
+    if r.reference.is_empty() {
+        println!("(no reference binary given: --reference BIN times one in the same run)");
+    } else {
+        println!(
+            "reference times are whole processes (scene load, render, PNG write); vs reference = the fastest reference binary at the same thread count over ours"
+        );
+    }
+    for row in &r.reference {
+        if let Some(f) = row.flip_vs_vendored {
+            println!(
+                "ref {} {} x{}: its picture against the vendored one: FLIP {f:.4}",
+                row.binary, row.scene, row.threads
+            );
+        }
+    }
+    println!();
+    println!(
+        "paper scenes against the reference renderer's pictures (CPU tracer, {})",
+        o.size
+    );
+    println!(
+        "{:<11} {:>8} {:>12}  against",
+        "scene", "FLIP", "> 2 levels"
+    );
+    for f in &r.fidelity {
+        println!(
+            "{:<11} {:>8.4} {:>11.2}%  {}",
+            f.scene,
+            f.flip,
+            f.differing_fraction * 100.0,
+            f.against
         );
     }
     println!();
@@ -402,5 +554,22 @@ fn print_tables(r: &Report, o: &Options) {
             d.mean,
             d.flip
         );
+    }
+    if !r.gpu_frames.is_empty() {
+        println!();
+        println!(
+            "builtin scenes on the GPU at {} ({}), each scene's own preset",
+            r.gpu_size, r.adapter
+        );
+        println!(
+            "{:<11} {:>6} {:>15} {:>10}",
+            "scene", "nodes", "first frame ms", "frame ms"
+        );
+        for g in &r.gpu_frames {
+            println!(
+                "{:<11} {:>6} {:>15.1} {:>10.1}",
+                g.scene, g.nodes, g.first_ms, g.ms
+            );
+        }
     }
 }

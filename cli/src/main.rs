@@ -10,6 +10,7 @@ mod bench_field_long;
 #[cfg(feature = "peers")]
 mod bench_field_peers;
 mod bench_march3d;
+mod bench_reference3d;
 mod bench_render2d;
 mod bench_sim;
 mod demo;

@@ -40,6 +40,10 @@ pub(crate) struct Options {
     /// Switch optimizations off, comma-separated (e.g. `guards,lod`).
     #[arg(long, value_delimiter = ',')]
     pub no: Vec<String>,
+    /// Largest surface error, in pixels, of an object's simplified form (LOD) where the
+    /// emitter uses it.
+    #[arg(long, default_value_t = CompileOptions::default().lod_pixels)]
+    pub lod_pixels: f32,
     /// Also render with the counting backend and print SDF evaluations, steps and flops.
     #[arg(long)]
     pub count: bool,
@@ -110,6 +114,7 @@ pub(crate) fn plan_for(
     let camera = scene.camera.camera().map_err(|e| e.to_string())?;
     let mut opts = opts.clone();
     opts.aspect = size.0 as f32 / size.1 as f32;
+    opts.height = size.1;
     let emitter = WorldCompiler::new(scene).map_err(|e| e.to_string())?;
     let plan = emitter.emit(&camera, &opts).map_err(|e| e.to_string())?;
     Ok((plan, camera))
@@ -130,7 +135,8 @@ fn run_inner(o: &Options) -> Result<(), String> {
         Some(s) => parse_size(s)?,
         None => scene.size,
     };
-    let opts = preset(&scene, o.preset.as_deref(), &o.no)?;
+    let mut opts = preset(&scene, o.preset.as_deref(), &o.no)?;
+    opts.lod_pixels = o.lod_pixels;
     let (plan, camera) = plan_for(&scene, &opts, size)?;
     let kind = match plan.shading {
         Shading::Paper(_) => "paper shading",

@@ -1,4 +1,4 @@
-// Emitted by craterfield::emit::codegen3d for plan key 0x6e697a210098746a.
+// Emitted by craterfield::emit::codegen3d for plan key 0xed60e49abdbc7f30.
 var<private> em_zero_bits: u32 = 0u;
 fn em_f32_bits(bits: u32) -> f32 {
     return bitcast<f32>(bits | em_zero_bits);
@@ -16,6 +16,7 @@ const em_material_ids: bool = true;
 const em_has_terrain: bool = false;
 const em_terrain_material: u32 = 0xffffffffu;
 const em_analytic_normal: bool = false;
+const em_terrain_top: f32 = 0.0f;
 const em_paper: bool = true;
 const em_ambient: f32 = 0.01f;
 const em_specular: f32 = 0.2f;
@@ -49,7 +50,7 @@ fn em_node0(pw: vec3<f32>) -> f32 {
 }
 fn em_node1(pw: vec3<f32>) -> f32 {
     let p = pw;
-    return sd_mandelbulb(p, vec3<f32>(0.0f, 0.0f, 6.0f), 0x4u, 256.0f);
+    return sd_mandelbulb(p, vec3<f32>(0.0f, 0.0f, 6.0f), 0x4u, 256.0f, 1.5f);
 }
 fn em_map(p: vec3<f32>) -> MapHit {
     var d = em_f32_bits(2139095040u);
@@ -104,7 +105,8 @@ fn em_lights(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> Lit {
     return sum;
 }
 fn em_bounds_shadow(o: vec3<f32>) -> bool {
-    return false;
+    var meets = false;
+    return meets;
 }
 fn em_ao_taps(p: vec3<f32>, n: vec3<f32>, t: f32, m: u32) -> u32 {
     return 0u;

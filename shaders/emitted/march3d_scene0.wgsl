@@ -1,4 +1,4 @@
-// Emitted by craterfield::emit::codegen3d for plan key 0x209b52fb9d5684b6.
+// Emitted by craterfield::emit::codegen3d for plan key 0x86973115d915cb4e.
 var<private> em_zero_bits: u32 = 0u;
 fn em_f32_bits(bits: u32) -> f32 {
     return bitcast<f32>(bits | em_zero_bits);
@@ -16,6 +16,7 @@ const em_material_ids: bool = true;
 const em_has_terrain: bool = false;
 const em_terrain_material: u32 = 0xffffffffu;
 const em_analytic_normal: bool = false;
+const em_terrain_top: f32 = 0.0f;
 const em_paper: bool = true;
 const em_ambient: f32 = 0.01f;
 const em_specular: f32 = 0.2f;
@@ -49,7 +50,7 @@ fn em_node0(pw: vec3<f32>) -> f32 {
 }
 fn em_node1(pw: vec3<f32>) -> f32 {
     let p = pw;
-    return sd_box((mat3x3<f32>(0.97781247f, -0.2071702f, -0.031038644f, 0.20784046f, 0.9779549f, 0.020164292f, 0.02617695f, -0.02616798f, 0.9993148f) * (p - vec3<f32>(-4.0f, -1.5f, 15.0f))), vec3<f32>(0.25f, 0.5f, 1.0f));
+    return sd_box((mat3x3<f32>(0.9778124f, 0.20784043f, -0.02617695f, -0.20851068f, 0.97767f, -0.026167978f, 0.020153653f, 0.031045547f, 0.9993148f) * (p - vec3<f32>(-4.0f, -1.5f, 15.0f))), vec3<f32>(0.25f, 0.5f, 1.0f));
 }
 fn em_node2(pw: vec3<f32>) -> f32 {
     let p = pw;
@@ -169,7 +170,8 @@ fn em_lights(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> Lit {
     return sum;
 }
 fn em_bounds_shadow(o: vec3<f32>) -> bool {
-    return false;
+    var meets = false;
+    return meets;
 }
 fn em_ao_taps(p: vec3<f32>, n: vec3<f32>, t: f32, m: u32) -> u32 {
     return 0u;

@@ -1,4 +1,4 @@
-// Emitted by craterfield::emit::codegen3d for plan key 0x752b18652faf52df.
+// Emitted by craterfield::emit::codegen3d for plan key 0xe648347888e14b4e.
 var<private> em_zero_bits: u32 = 0u;
 fn em_f32_bits(bits: u32) -> f32 {
     return bitcast<f32>(bits | em_zero_bits);
@@ -16,6 +16,7 @@ const em_material_ids: bool = true;
 const em_has_terrain: bool = true;
 const em_terrain_material: u32 = 0x0u;
 const em_analytic_normal: bool = true;
+const em_terrain_top: f32 = 6.9744997f;
 const em_paper: bool = false;
 const em_ambient: f32 = 0.0f;
 const em_specular: f32 = 0.0f;
@@ -108,29 +109,42 @@ fn em_node3(pw: vec3<f32>) -> f32 {
 }
 fn em_node4(pw: vec3<f32>) -> f32 {
     let p = pw - vec3<f32>(0.0, 3.9283235f, 0.0);
-    return sd_sphere((p - vec3<f32>(40.29f, 3.6652f, 28.48f)), 1.617f);
+    return sd_capsule((p - vec3<f32>(40.29f, 0.0f, 28.48f)), vec3<f32>(0.0f, -0.3f, 0.0f), vec3<f32>(0.0f, 2.9645f, 0.0f), 0.2695f);
 }
 fn em_node5(pw: vec3<f32>) -> f32 {
+    let p = pw - vec3<f32>(0.0, 3.9283235f, 0.0);
+    let db = guard_distance(p, vec3<f32>(40.32084f, 3.4366038f, 28.464487f), vec3<f32>(2.0353246f, 2.0353246f, 2.0353246f));
+    if (db > 0.50883114f) {
+        return db;
+    }
+    var d = sd_capsule(p, vec3<f32>(40.29f, 2.156f, 28.48f), vec3<f32>(41.2602f, 3.3418f, 28.7495f), 0.13475f);
+    d = smin(d, sd_capsule(p, vec3<f32>(40.29f, 2.4255f, 28.48f), vec3<f32>(39.481503f, 3.5574f, 28.0488f), 0.13475f), 0.3234f);
+    d = smin(d, sd_ellipsoid((p - vec3<f32>(40.29f, 3.9886f, 28.48f)), vec3<f32>(1.4014f, 1.1858f, 1.4014f)), 0.3234f);
+    d = smin(d, sd_sphere((p - vec3<f32>(41.0985f, 3.3418f, 28.8034f)), 0.86239994f), 0.3234f);
+    d = smin(d, sd_sphere((p - vec3<f32>(39.589302f, 3.4495997f, 28.0488f)), 0.8085f), 0.3234f);
+    return d;
+}
+fn em_node6(pw: vec3<f32>) -> f32 {
     let p = pw - vec3<f32>(0.0, 4.2681823f, 0.0);
     return (sd_ellipsoid((p - vec3<f32>(-19.16f, 0.32400003f, 26.53f)), vec3<f32>(1.2960001f, 0.81000006f, 1.08f)) + 0.38880002f * (noise3(p * 1.4814814f) - 0.5)) * 0.40056208f;
 }
-fn em_node6(pw: vec3<f32>) -> f32 {
+fn em_node7(pw: vec3<f32>) -> f32 {
     let p = pw - vec3<f32>(0.0, 3.771986f, 0.0);
     return (sd_ellipsoid((p - vec3<f32>(-7.66f, 0.16800001f, 23.82f)), vec3<f32>(0.67200005f, 0.42000002f, 0.56f)) + 0.20160002f * (noise3(p * 2.857143f) - 0.5)) * 0.40056208f;
 }
-fn em_node7(pw: vec3<f32>) -> f32 {
+fn em_node8(pw: vec3<f32>) -> f32 {
     let p = pw - vec3<f32>(0.0, 0.79350084f, 0.0);
     return (sd_ellipsoid((p - vec3<f32>(-4.34f, 0.30900002f, 5.13f)), vec3<f32>(1.2360001f, 0.7725f, 1.03f)) + 0.37080002f * (noise3(p * 1.5533981f) - 0.5)) * 0.40056208f;
 }
-fn em_node8(pw: vec3<f32>) -> f32 {
+fn em_node9(pw: vec3<f32>) -> f32 {
     let p = pw - vec3<f32>(0.0, 0.5620043f, 0.0);
     return sd_torus((mat3x3<f32>(1.0f, 0.0f, 0.0f, 0.0f, -4.371139e-8f, -1.0f, 0.0f, 1.0f, -4.371139e-8f) * (p - vec3<f32>(-4.0f, 2.2f, 4.0f))), 1.2f, 0.25f);
 }
-fn em_node9(pw: vec3<f32>) -> f32 {
+fn em_node10(pw: vec3<f32>) -> f32 {
     let p = pw - vec3<f32>(0.0, 0.49063477f, 0.0);
     return sd_cylinder((p - vec3<f32>(3.5f, 2.0f, 0.0f)), 0.35f, 2.5f);
 }
-fn em_node10(pw: vec3<f32>) -> f32 {
+fn em_node11(pw: vec3<f32>) -> f32 {
     let p = pw - vec3<f32>(0.0, 0.49063477f, 0.0);
     return sd_sphere((p - vec3<f32>(3.5f, 4.9f, 0.0f)), 0.7f);
 }
@@ -170,12 +184,12 @@ fn em_map(p: vec3<f32>) -> MapHit {
     let d4 = em_node4(p);
     if (d4 < d) {
         d = d4;
-        m = 0x2u;
+        m = 0x1u;
     }
     let d5 = em_node5(p);
     if (d5 < d) {
         d = d5;
-        m = 0x3u;
+        m = 0x2u;
     }
     let d6 = em_node6(p);
     if (d6 < d) {
@@ -190,7 +204,7 @@ fn em_map(p: vec3<f32>) -> MapHit {
     let d8 = em_node8(p);
     if (d8 < d) {
         d = d8;
-        m = 0x6u;
+        m = 0x3u;
     }
     let d9 = em_node9(p);
     if (d9 < d) {
@@ -200,6 +214,11 @@ fn em_map(p: vec3<f32>) -> MapHit {
     let d10 = em_node10(p);
     if (d10 < d) {
         d = d10;
+        m = 0x6u;
+    }
+    let d11 = em_node11(p);
+    if (d11 < d) {
+        d = d11;
         m = 0x6u;
     }
     return MapHit(d, m);
@@ -240,12 +259,12 @@ fn em_dist(p: vec3<f32>) -> f32 {
     let d4 = em_node4(p);
     if (d4 < d) {
         d = d4;
-        m = 0x2u;
+        m = 0x1u;
     }
     let d5 = em_node5(p);
     if (d5 < d) {
         d = d5;
-        m = 0x3u;
+        m = 0x2u;
     }
     let d6 = em_node6(p);
     if (d6 < d) {
@@ -260,7 +279,7 @@ fn em_dist(p: vec3<f32>) -> f32 {
     let d8 = em_node8(p);
     if (d8 < d) {
         d = d8;
-        m = 0x6u;
+        m = 0x3u;
     }
     let d9 = em_node9(p);
     if (d9 < d) {
@@ -270,6 +289,11 @@ fn em_dist(p: vec3<f32>) -> f32 {
     let d10 = em_node10(p);
     if (d10 < d) {
         d = d10;
+        m = 0x6u;
+    }
+    let d11 = em_node11(p);
+    if (d11 < d) {
+        d = d11;
         m = 0x6u;
     }
     return d;
@@ -307,95 +331,68 @@ fn em_lights(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> Lit {
     return sum;
 }
 fn em_bounds_shadow(o: vec3<f32>) -> bool {
+    var meets = false;
     {
         let oc = vec3<f32>(9.0f, 3.316963f, 11.5f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 83.36251f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 83.36251f);
     }
     {
         let oc = vec3<f32>(-10.0f, 4.5820127f, 14.0f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 18.013685f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 18.013685f);
     }
     {
         let oc = vec3<f32>(-38.48f, 5.5231943f, 23.95f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 3.4819567f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 3.4819567f);
     }
     {
         let oc = vec3<f32>(-38.44979f, 7.587663f, 23.934805f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 3.9751887f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 3.9751887f);
     }
     {
-        let oc = vec3<f32>(40.29f, 7.5935235f, 28.48f) - o;
+        let oc = vec3<f32>(40.29f, 5.2605734f, 28.48f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 2.6146889f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 3.616653f);
+    }
+    {
+        let oc = vec3<f32>(40.32084f, 7.3649273f, 28.464487f) - o;
+        let b = dot(oc, em_sun);
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 4.142546f);
     }
     {
         let oc = vec3<f32>(-19.16f, 4.592182f, 26.53f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 2.2212925f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 2.2212925f);
     }
     {
         let oc = vec3<f32>(-7.66f, 3.939986f, 23.82f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 0.59722f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 0.59722f);
     }
     {
         let oc = vec3<f32>(-4.34f, 1.1025009f, 5.13f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 2.020378f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 2.020378f);
     }
     {
         let oc = vec3<f32>(-4.0f, 2.7620044f, 4.0f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 2.1025002f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 2.1025002f);
     }
     {
         let oc = vec3<f32>(3.5f, 2.4906347f, 0.0f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 6.3725004f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 6.3725004f);
     }
     {
         let oc = vec3<f32>(3.5f, 5.390635f, 0.0f) - o;
         let b = dot(oc, em_sun);
-        let c = dot(oc, oc) - 0.48999998f;
-        if (b > 0.0 && b * b > c) {
-            return true;
-        }
+        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - 0.48999998f);
     }
-    return false;
+    return meets;
 }
 fn em_ao_taps(p: vec3<f32>, n: vec3<f32>, t: f32, m: u32) -> u32 {
     if (em_has_terrain && m == em_terrain_material && n.y > 0.9 && p.y > frame.position.y) {

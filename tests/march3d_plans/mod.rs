@@ -87,7 +87,8 @@ pub(crate) fn scene0() -> Plan {
             half: Vec3::new(0.25, 0.5, 1.0),
         },
     );
-    boxed.rotation = Some(rotation_degrees(Vec3::new(-1.5, -1.5, 12.0)).transpose());
+    boxed.rotation =
+        Some(rotation_degrees(Vec3::new(1.779_426_2, -1.154_797_4, -12.037_571)).transpose());
     let nodes = vec![
         node(0, plane, 1.0e4),
         node(1, boxed, 1.2),
@@ -167,6 +168,7 @@ pub(crate) fn mandelbulb() -> Plan {
             centre: Vec3::new(0.0, 0.0, 6.0),
             iterations: 4,
             bailout: 256.0,
+            derivative: 1.5,
         },
         bound: Sphere {
             centre: Vec3::new(0.0, 0.0, 6.0),

@@ -228,11 +228,11 @@ fn bulb8(w: vec3<f32>) -> vec3<f32> {
     );
 }
 
-fn sd_mandelbulb(p: vec3<f32>, centre: vec3<f32>, iterations: u32, bailout: f32) -> f32 {
+fn sd_mandelbulb(p: vec3<f32>, centre: vec3<f32>, iterations: u32, bailout: f32, derivative: f32) -> f32 {
     let c = p - centre;
     var w = c;
     var m = dot(w, w);
-    var dz = 1.0;
+    var dz = derivative;
     for (var i = 0u; i < iterations; i++) {
         dz = 8.0 * (m * m * m * sqrt(m)) * dz + 1.0;
         w = c + bulb8(w);
@@ -337,16 +337,27 @@ fn surface_normal(p: vec3<f32>, m: u32) -> vec3<f32> {
 // The soft shadow from `p` (normal `n`) towards unit `l` up to `limit`: 0 in shadow, 1 lit.
 fn soft_shadow(p: vec3<f32>, n: vec3<f32>, l: vec3<f32>, limit: f32, k: f32, steps: u32) -> f32 {
     let q = p + n * em_ray_offset;
+    // `s` runs `em_ray_offset` ahead of the distance travelled from `q`, as in the
+    // reference renderer.
     var s = em_ray_offset;
+    var x = q;
     var res = 1.0;
+    var prev = 1e20;
     for (var i = 0u; i < steps; i++) {
-        let h = em_dist(q + s * l);
+        let h = em_dist(x);
         if (h < em_hit) {
             return 0.0;
         }
-        res = min(res, k * h / s);
+        // The closest approach between this sphere and the previous one.
+        let y = h * h / (2.0 * prev);
+        let d = sqrt(max(h * h - y * y, 0.0));
+        if (s - y > 0.0) {
+            res = min(res, k * d / (s - y));
+        }
+        prev = h;
         s += h;
-        if (s > limit || length(q + s * l) > em_escape) {
+        x += l * h;
+        if (s > limit || length(x) > em_escape) {
             break;
         }
     }
@@ -396,7 +407,7 @@ fn point_light(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>, position: vec3<f32>, 
     let intensity = emission / r;
     var shadow = 1.0;
     if (em_paper_shadows) {
-        shadow = soft_shadow(p, n, l, r, em_shadow_k, em_max_steps);
+        shadow = soft_shadow(p, n, l, 3.0e38, em_shadow_k, em_max_steps);
     }
     let diffuse = max(dot(n, l), 0.0);
     let rv = max(dot(reflect(-l, n), -dir), 0.0);
@@ -431,11 +442,18 @@ fn paper_shade(origin: vec3<f32>, primary: vec3<f32>) -> vec3<f32> {
 }
 
 fn world_shade(origin: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
-    let r = march(origin, dir);
+    var r = march(origin, dir);
+    var p = origin + r.t * dir;
+    // A ray that stopped without a hit while pointing below the horizon or ending below the
+    // terrain's top can only be looking at the ground: it lands on the height field under
+    // its end point instead of drawing sky through the hills.
+    if (!r.hit && em_has_terrain && (dir.y < 0.0 || p.y < em_terrain_top)) {
+        p = vec3<f32>(p.x, em_height(p.xz).x, p.z);
+        r = RayHit(true, length(p - origin), em_terrain_material);
+    }
     if (!r.hit) {
         return gamma_encode(mix(em_sky0, em_sky1, clamp(dir.y, 0.0, 1.0)), em_gamma);
     }
-    let p = origin + r.t * dir;
     let n = surface_normal(p, r.m);
     let look = em_material(r.m);
     let diff = max(dot(n, em_sun), 0.0);
@@ -468,7 +486,8 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let dir = camera_ray(gid.x, gid.y);
     var colour: vec3<f32>;
     if (em_paper) {
-        colour = paper_shade(frame.position, dir);
+        // The reference renderer truncates to bytes; k / 255 reaches the target as k.
+        colour = floor(clamp(paper_shade(frame.position, dir), vec3<f32>(0.0), vec3<f32>(1.0)) * 255.0) / 255.0;
     } else {
         colour = world_shade(frame.position, dir);
     }

@@ -280,6 +280,11 @@ fn constants(plan: &Plan) -> String {
             "bool",
             bool_lit(plan.terrain.is_some_and(|t| t.analytic_normal)).into(),
         ),
+        (
+            "em_terrain_top",
+            "f32",
+            lit(plan.terrain.map_or(0.0, |t| t.fbm.top())),
+        ),
     ];
     c.extend(shading_constants(&plan.shading));
     let mut out = String::new();
@@ -507,11 +512,13 @@ fn shape_code(shape: &Shape) -> String {
             centre,
             iterations,
             bailout,
+            derivative,
         } => format!(
-            "    return sd_mandelbulb(p, {}, {}, {});\n",
+            "    return sd_mandelbulb(p, {}, {}, {}, {});\n",
             vec3_lit(*centre),
             u32_literal(*iterations),
-            lit(*bailout)
+            lit(*bailout),
+            lit(*derivative)
         ),
     }
 }
@@ -642,8 +649,12 @@ fn lights_fn(plan: &Plan) -> String {
 }
 
 /// `em_bounds_shadow(o)`: whether the sun ray from `o` meets a node's bounding sphere ahead.
+/// One test per node, or-ed into one flag: written with an early `return` per node, a
+/// forest's 132 tests lost the shadows of its last twenty nodes on lavapipe (2.5% of its
+/// pixels off the CPU tracer's; 0.007% this way).
 fn bounds_shadow_fn(plan: &Plan) -> String {
-    let mut out = String::from("fn em_bounds_shadow(o: vec3<f32>) -> bool {\n");
+    let mut out =
+        String::from("fn em_bounds_shadow(o: vec3<f32>) -> bool {\n    var meets = false;\n");
     let uses_bounds = matches!(
         &plan.shading,
         Shading::World(w) if matches!(w.shadow, ShadowMode::TerrainAndBounds { .. })
@@ -653,13 +664,13 @@ fn bounds_shadow_fn(plan: &Plan) -> String {
             let b = &node.bound;
             let _ = writeln!(
                 out,
-                "    {{\n        let oc = {} - o;\n        let b = dot(oc, em_sun);\n        let c = dot(oc, oc) - {};\n        if (b > 0.0 && b * b > c) {{\n            return true;\n        }}\n    }}",
+                "    {{\n        let oc = {} - o;\n        let b = dot(oc, em_sun);\n        meets = meets || (b > 0.0 && b * b > dot(oc, oc) - {});\n    }}",
                 vec3_lit(b.centre),
                 lit(b.radius * b.radius)
             );
         }
     }
-    out.push_str("    return false;\n}\n");
+    out.push_str("    return meets;\n}\n");
     out
 }
 

@@ -226,6 +226,15 @@ impl Fbm {
         (h, Vec2::new(gx, gz))
     }
 
+    /// An upper bound of the height over the plane: each octave's noise lies in `[0, 1)`,
+    /// so `h < base + |amplitude| * sum_o |gain|^o`.
+    pub fn top(&self) -> f32 {
+        let sum: f64 = (0..self.octaves.min(MAX_OCTAVES))
+            .map(|o| (self.gain.abs() as f64).powi(o as i32))
+            .sum();
+        (self.base as f64 + self.amplitude.abs() as f64 * sum) as f32
+    }
+
     /// An upper bound of `|grad h|` over the plane.
     ///
     /// Derivation: in one cell of the 2D value noise,
@@ -345,6 +354,21 @@ mod tests {
             }
         }
         best
+    }
+
+    #[test]
+    fn top_bounds_the_sampled_heights() {
+        for octaves in [1, 4, 6] {
+            let f = fbm(octaves);
+            let lanes = FbmLanes::new(&f, Hash::DotFract);
+            let top = f.top();
+            let mut highest = f32::NEG_INFINITY;
+            for k in 0..20_000 {
+                let (x, z) = ((k % 200) as f32 * 0.37, (k / 200) as f32 * 0.53);
+                highest = highest.max(lanes.height_only(Scalar, x, z));
+            }
+            assert!(highest <= top, "{octaves} octaves: {highest} > {top}");
+        }
     }
 
     #[test]

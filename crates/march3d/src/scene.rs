@@ -419,6 +419,10 @@ pub enum Object {
         /// Escape radius squared.
         #[serde(default = "d_bailout")]
         bailout: f32,
+        /// The distance estimate's starting derivative (1; the reference paper's scene
+        /// uses 1.5).
+        #[serde(default = "d_derivative")]
+        derivative: f32,
         /// Material name.
         material: String,
     },
@@ -432,6 +436,9 @@ fn d_iterations() -> u32 {
 }
 fn d_bailout() -> f32 {
     256.0
+}
+fn d_derivative() -> f32 {
+    1.0
 }
 
 fn invalid(path: impl Into<String>, message: impl Into<String>) -> SceneError {
@@ -652,9 +659,16 @@ impl Scene {
                 at,
                 iterations,
                 bailout,
+                derivative,
                 material,
             } => {
                 check_vec(&format!("{path}.Mandelbulb.at"), *at, -c, c)?;
+                check_range(
+                    &format!("{path}.Mandelbulb.derivative"),
+                    *derivative,
+                    0.1,
+                    100.0,
+                )?;
                 if !(1..=16).contains(iterations) {
                     return Err(invalid(
                         format!("{path}.Mandelbulb.iterations"),
@@ -802,13 +816,13 @@ mod tests {
                 "material: \"red\")",
                 "material: \"red\", scale: 2.0)",
                 "scale",
-                28,
+                31,
             ),
             (
                 "Sphere(r: 3.0)",
                 "Sphere(r: 3.0, radius: 1.0)",
                 "radius",
-                28,
+                31,
             ),
         ] {
             let text = scene0.replacen(from, to, 1);

@@ -275,8 +275,7 @@ impl Viewer3dApp {
             .camera
             .camera()
             .ok_or("the camera became degenerate")?;
-        let aspect = size[0] as f32 / size[1] as f32;
-        let (plan, _) = world.plan_for(&camera, aspect)?;
+        let (plan, _) = world.plan_for(&camera, size)?;
         self.view.draw(rs, plan, &camera, size)
     }
 

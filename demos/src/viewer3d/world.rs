@@ -43,7 +43,7 @@ pub(crate) struct World {
     options: CompileOptions,
     pub(crate) camera: ViewCamera,
     /// The camera and aspect the plan was emitted for.
-    planned_for: Option<(Camera3d, f32)>,
+    planned_for: Option<(Camera3d, [u32; 2])>,
     plan: Option<(Plan, PlanStats)>,
 }
 
@@ -99,24 +99,25 @@ impl World {
         self.plan.as_ref()
     }
 
-    /// The plan for `camera` and images of `aspect`, emitted again only when one of them
-    /// or the options changed.
+    /// The plan for `camera` and images of `size` (its aspect bounds the frustum, its
+    /// height the LOD's pixel), emitted again only when one of them or the options changed.
     pub(crate) fn plan_for(
         &mut self,
         camera: &Camera3d,
-        aspect: f32,
+        size: [u32; 2],
     ) -> Result<&(Plan, PlanStats), String> {
-        if self.planned_for != Some((*camera, aspect)) || self.plan.is_none() {
+        if self.planned_for != Some((*camera, size)) || self.plan.is_none() {
             self.plan = None;
             let mut options = self.options.clone();
-            options.aspect = aspect;
+            options.aspect = size[0] as f32 / size[1].max(1) as f32;
+            options.height = size[1].max(1);
             let plan = self
                 .compiler
                 .emit(camera, &options)
                 .map_err(|e| e.to_string())?;
             let stats = self.stats(&plan, camera, &options);
             self.plan = Some((plan, stats));
-            self.planned_for = Some((*camera, aspect));
+            self.planned_for = Some((*camera, size));
         }
         self.plan
             .as_ref()
@@ -165,14 +166,14 @@ mod tests {
         let scene = Scene::builtin("forest").unwrap();
         let mut world = World::new(&scene).unwrap();
         let camera = world.camera.camera().unwrap();
-        let key = world.plan_for(&camera, 1.5).unwrap().0.key;
+        let key = world.plan_for(&camera, [960, 640]).unwrap().0.key;
         world.set_optimization(Optimization::AabbGuards, false);
         assert!(!world.options().on(Optimization::AabbGuards));
-        let off = world.plan_for(&camera, 1.5).unwrap().0.key;
+        let off = world.plan_for(&camera, [960, 640]).unwrap().0.key;
         assert_ne!(key, off);
         world.set_optimization(Optimization::AabbGuards, true);
         assert_eq!(world.options(), &CompileOptions::default());
-        assert_eq!(world.plan_for(&camera, 1.5).unwrap().0.key, key);
+        assert_eq!(world.plan_for(&camera, [960, 640]).unwrap().0.key, key);
     }
 
     #[test]
@@ -180,7 +181,7 @@ mod tests {
         let scene = Scene::builtin("forest").unwrap();
         let mut world = World::new(&scene).unwrap();
         let camera = world.camera.camera().unwrap();
-        let (_, stats) = world.plan_for(&camera, 16.0 / 9.0).unwrap();
+        let (_, stats) = world.plan_for(&camera, [1280, 720]).unwrap();
         assert!(stats.visible > 0 && stats.culled() > 0, "{stats:?}");
         assert!(stats.steps <= stats.full_steps);
     }

@@ -3,8 +3,10 @@
 //! geometry (trees, rocks, huts as primitives with bounds) is `objects`.
 //!
 //! Emitter-side (decided here, per camera): frustum culling (behind the camera, beyond the
-//! far plane, outside the side planes, by bounding sphere), distance LOD (a tree's six
-//! primitives become one sphere, a rock loses its noise), step tiers from the visible
+//! far plane, outside the side planes, by bounding sphere), LOD by projected size (an
+//! object takes the coarsest simplified form whose surface error stays under half a pixel
+//! at the camera's resolution: a tree's six primitives become four, its trunk and its
+//! crown's three masses; a rock loses its noise), step tiers from the visible
 //! object count, terrain heights baked as literals, the height early-out above the tallest
 //! visible object, and the cache key. Shader-side (decided here, executed by both
 //! renderers): AABB guards, nearest-row repetition, material IDs, distance-adaptive AO, the
@@ -26,7 +28,7 @@ use crate::plan3d::{
 };
 use crate::scene::{Lighting, MarchSettings, Scene, SceneError};
 use craterfield_wgsl::fnv::Fnv64;
-use objects::{Prepared, guard_for, prepare};
+use objects::{Lod, Prepared, guard_for, prepare};
 
 /// The step factor used without the Lipschitz bound: the common hand-tuned heuristic.
 pub const HEURISTIC_STEP: f32 = 0.68;
@@ -138,21 +140,25 @@ impl StepTiers {
 pub struct CompileOptions {
     /// Enabled optimizations (see [`Optimization`]).
     pub enabled: Vec<Optimization>,
-    /// Objects whose bounding sphere is farther than this become their LOD form.
-    pub lod_distance: f32,
+    /// An object takes its coarsest simplified form whose surface error, projected at the
+    /// nearest point of its bounding sphere, covers at most this many pixels.
+    pub lod_pixels: f32,
     /// Step budgets.
     pub tiers: StepTiers,
     /// Width over height of the images the plan is for (the frustum's side planes).
     pub aspect: f32,
+    /// Height in pixels of the images the plan is for (the size of a pixel for the LOD).
+    pub height: u32,
 }
 
 impl Default for CompileOptions {
     fn default() -> CompileOptions {
         CompileOptions {
             enabled: Optimization::ALL.to_vec(),
-            lod_distance: 60.0,
+            lod_pixels: 0.5,
             tiers: StepTiers::default(),
             aspect: 16.0 / 9.0,
+            height: 720,
         }
     }
 }
@@ -216,7 +222,8 @@ pub enum CompileError {
 /// Which objects a camera sees, and at which level of detail.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Visibility {
-    /// `(object index, level)`: level 0 is full detail, 1 the far form.
+    /// `(object index, level)`: level 0 is full detail, `l > 0` the object's `l`-th
+    /// simplified form.
     pub objects: Vec<(u32, u8)>,
 }
 
@@ -272,9 +279,12 @@ impl WorldCompiler {
                 {
                     return None;
                 }
-                let far = (bound.centre - camera.position).length() - bound.radius;
-                let lod = opts.on(Optimization::Lod) && p.far.is_some() && far > opts.lod_distance;
-                Some((i as u32, lod as u8))
+                let level = if opts.on(Optimization::Lod) {
+                    lod_level(camera, &bound, &p.lods, opts)
+                } else {
+                    0
+                };
+                Some((i as u32, level))
             })
             .collect();
         Visibility { objects }
@@ -340,9 +350,9 @@ impl WorldCompiler {
 
     fn object_nodes(&self, i: usize, lod: u8, opts: &CompileOptions) -> Vec<Node> {
         let p = &self.objects[i];
-        let parts = match (&p.far, lod) {
-            (Some(far), 1) => far,
-            _ => &p.full,
+        let parts = match lod {
+            0 => &p.full,
+            l => &p.lods[l as usize - 1].parts,
         };
         let lift = match p.anchor {
             None => Lift::None,
@@ -481,8 +491,11 @@ fn check_options(opts: &CompileOptions) -> Result<(), CompileError> {
             message: message.to_string(),
         })
     };
-    if opts.lod_distance.is_nan() || opts.lod_distance < 0.0 {
-        return bad("lod_distance", "must be a non-negative number");
+    if opts.lod_pixels.is_nan() || opts.lod_pixels < 0.0 {
+        return bad("lod_pixels", "must be a non-negative number");
+    }
+    if opts.height == 0 {
+        return bad("height", "must be at least one pixel");
     }
     if !(opts.aspect > 0.0 && opts.aspect.is_finite()) {
         return bad("aspect", "must be positive and finite");
@@ -491,6 +504,22 @@ fn check_options(opts: &CompileOptions) -> Result<(), CompileError> {
         return bad("tiers", "step counts must be positive");
     }
     Ok(())
+}
+
+/// The level of detail of an object with bounding sphere `bound` and simplified forms
+/// `lods`: the coarsest form whose error, over the size of a pixel at the bound's nearest
+/// point, is at most `opts.lod_pixels` (0, full detail, when none is, or when the eye is
+/// inside the bound).
+fn lod_level(camera: &Camera3d, bound: &Sphere, lods: &[Lod], opts: &CompileOptions) -> u8 {
+    let near = (bound.centre - camera.position).length() - bound.radius;
+    if near.is_nan() || near <= 0.0 {
+        return 0;
+    }
+    let pixel = 2.0 * near * camera.tan_half_fov / opts.height as f32;
+    let allowed = opts.lod_pixels * pixel;
+    lods.iter()
+        .rposition(|l| l.error <= allowed)
+        .map_or(0, |i| i as u8 + 1)
 }
 
 /// Whether a bounding sphere can touch the view: in front of the eye (dot with the view

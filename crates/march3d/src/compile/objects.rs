@@ -1,6 +1,6 @@
 //! Scene objects as plan nodes: the geometry of trees, rocks, vineyard rows and huts in
-//! node-local coordinates (ground at y = 0 under the anchor), their far-distance
-//! simplifications, and the bounds the emitter culls and guards with.
+//! node-local coordinates (ground at y = 0 under the anchor), their simplified forms with
+//! how far each may move the surface, and the bounds the emitter culls and guards with.
 
 use glam::Vec3;
 
@@ -21,10 +21,19 @@ pub(crate) struct Prepared {
     pub anchor: Option<(f32, f32)>,
     /// Full detail.
     pub full: Parts,
-    /// The simplified form far away, when there is one.
-    pub far: Option<Parts>,
+    /// Simplified forms, finest first (level 1 is `lods[0]`).
+    pub lods: Vec<Lod>,
     /// Sphere around the object (node-local y).
     pub bound: Sphere,
+}
+
+/// A simplified form of an object and its error: no point of its surface lies farther than
+/// `error` (world units) from the full form's surface, nor the other way round. The emitter
+/// uses a form only where that error covers at most a fraction of a pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Lod {
+    pub parts: Parts,
+    pub error: f32,
 }
 
 /// Bounding sphere of a primitive about its placed centre (rotation does not change it).
@@ -148,6 +157,7 @@ pub(crate) fn prepare(scene: &Scene, object: &Object) -> Prepared {
             at,
             iterations,
             bailout,
+            derivative,
             material,
         } => {
             let bound = Sphere {
@@ -158,13 +168,14 @@ pub(crate) fn prepare(scene: &Scene, object: &Object) -> Prepared {
                 centre: *at,
                 iterations: *iterations,
                 bailout: *bailout,
+                derivative: *derivative,
             };
             Prepared {
                 anchor: None,
                 full: Parts {
                     nodes: vec![node(mat(scene, material), shape, bound, 1)],
                 },
-                far: None,
+                lods: Vec::new(),
                 bound,
             }
         }
@@ -190,10 +201,14 @@ fn shape_object(material: u32, kind: PrimKind, at: Vec3, rotate: Vec3, ground: b
     Prepared {
         anchor: ground.then_some((at.x, at.z)),
         full: Parts { nodes: vec![n] },
-        far: None,
+        lods: Vec::new(),
         bound,
     }
 }
+
+/// How far a simplified tree (crown of three blended masses, no branches) may move its
+/// surface, as a fraction of its height (the test samples 0.024).
+const TREE_CROWN_ERROR: f32 = 0.035;
 
 fn tree((x, z): (f32, f32), h: f32, trunk: u32, leaves: u32) -> Prepared {
     let at = |dx: f32, dy: f32, dz: f32| Vec3::new(x + dx * h, dy * h, z + dz * h);
@@ -244,16 +259,25 @@ fn tree((x, z): (f32, f32), h: f32, trunk: u32, leaves: u32) -> Prepared {
     );
     let trunk_node = prim_node(trunk, trunk_prim);
     let bound = merge(trunk_node.bound, crown_bound);
-    let far = prim_node(
-        leaves,
-        Prim::at(at(0.0, 0.68, 0.0), PrimKind::Sphere { r: 0.3 * h }),
-    );
+    // The simplified tree keeps the trunk and blends only the crown's three masses: the
+    // branches hide inside them but for stubs the trunk covers. Its error was measured by
+    // sampling both surfaces (see the tests) and rounded up.
+    let masses = match &crown.shape {
+        Shape::Blend { parts, .. } => parts[2..].to_vec(),
+        _ => unreachable!("a tree crown is a blend"),
+    };
+    let simple_crown = node(leaves, Shape::Blend { k, parts: masses }, crown_bound, 3);
     Prepared {
         anchor: Some((x, z)),
+        lods: vec![Lod {
+            parts: Parts {
+                nodes: vec![trunk_node.clone(), simple_crown],
+            },
+            error: TREE_CROWN_ERROR * h,
+        }],
         full: Parts {
             nodes: vec![trunk_node, crown],
         },
-        far: Some(Parts { nodes: vec![far] }),
         bound,
     }
 }
@@ -287,9 +311,13 @@ fn rock((x, z): (f32, f32), r: f32, roughness: f32, material: u32) -> Prepared {
     Prepared {
         anchor: Some((x, z)),
         full: Parts { nodes: vec![full] },
-        far: Some(Parts {
-            nodes: vec![prim_node(material, base)],
-        }),
+        // The displacement moves the surface by at most amp / 2 either way.
+        lods: vec![Lod {
+            parts: Parts {
+                nodes: vec![prim_node(material, base)],
+            },
+            error: amp * 0.5,
+        }],
         bound,
     }
 }
@@ -318,7 +346,7 @@ fn vine_rows((x, z): (f32, f32), rows: u32, spacing: f32, length: f32, material:
     Prepared {
         anchor: Some((x, (z + last) * 0.5)),
         full: Parts { nodes: vec![full] },
-        far: None,
+        lods: Vec::new(),
         bound,
     }
 }
@@ -352,7 +380,7 @@ fn hut((x, z): (f32, f32), s: f32, material: u32) -> Prepared {
     Prepared {
         anchor: Some((x, z)),
         full: Parts { nodes: vec![full] },
-        far: None,
+        lods: Vec::new(),
         bound,
     }
 }
@@ -377,11 +405,113 @@ mod tests {
         }
     }
 
+    /// A plan of `nodes` alone, for distances.
+    fn plan_of(nodes: &[Node]) -> crate::plan3d::Plan {
+        use crate::plan3d::{Hash, March, Material, PaperShading, Plan, Shading};
+        Plan {
+            key: 0,
+            march: March {
+                max_steps: 1,
+                hit: 1e-3,
+                hit_per_t: 0.0,
+                far: f32::INFINITY,
+                escape: f32::INFINITY,
+                step_factor: 1.0,
+                ray_offset: 1e-3,
+                normal_eps: 1e-3,
+                relax: 1.0,
+            },
+            terrain: None,
+            early_out: None,
+            nodes: nodes.to_vec(),
+            materials: vec![
+                Material {
+                    colour: Vec3::ONE,
+                    reflectivity: 0.0,
+                };
+                2
+            ],
+            shading: Shading::Paper(PaperShading {
+                lights: Vec::new(),
+                shininess: 1.0,
+                specular: 0.0,
+                ambient: 1.0,
+                bounces: 0,
+                reflection_scale: 0.0,
+                shadow_k: None,
+                fog: 0.0,
+                gamma: 1.0,
+            }),
+            material_ids: false,
+            hash: Hash::DotFract,
+        }
+    }
+
+    /// The largest distance from one surface to the other over sampled points near either:
+    /// the surface error a simplified form claims to stay within.
+    fn surface_error(a: &[Node], b: &[Node], bound: Sphere) -> f32 {
+        let (pa, pb) = (plan_of(a), plan_of(b));
+        let shell = 2e-3 * bound.radius;
+        let mut seed = 0x9e37_79b9_u32;
+        let mut unit = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed as f32 / u32::MAX as f32 * 2.0 - 1.0
+        };
+        let (mut worst, mut near) = (0.0f32, 0);
+        for _ in 0..400_000 {
+            let q = bound.centre + Vec3::new(unit(), unit(), unit()) * bound.radius;
+            let (da, db) = (
+                crate::cpu::distance_at(&pa, q),
+                crate::cpu::distance_at(&pb, q),
+            );
+            if da.abs() < shell {
+                worst = worst.max(db.abs());
+                near += 1;
+            }
+            if db.abs() < shell {
+                worst = worst.max(da.abs());
+                near += 1;
+            }
+        }
+        assert!(near > 1000, "only {near} samples near the surfaces");
+        worst
+    }
+
     #[test]
-    fn a_tree_is_six_primitives_and_one_far_away() {
+    fn simplified_forms_stay_within_their_error() {
+        let h = 6.0;
+        let t = tree((0.0, 0.0), h, 0, 1);
+        let e = surface_error(&t.full.nodes, &t.lods[0].parts.nodes, t.bound);
+        eprintln!("tree: surface error {e} (claimed {})", t.lods[0].error);
+        assert!(e <= t.lods[0].error, "tree: {e} > {}", t.lods[0].error);
+        // The claim is not loose either: the old one-sphere proxy is far outside it.
+        let ball = [prim_node(
+            1,
+            Prim::at(
+                Vec3::new(0.0, 0.68 * h, 0.0),
+                PrimKind::Sphere { r: 0.3 * h },
+            ),
+        )];
+        assert!(surface_error(&t.full.nodes, &ball, t.bound) > 4.0 * t.lods[0].error);
+        let r = rock((0.0, 0.0), 1.0, 0.18, 0);
+        let e = surface_error(&r.full.nodes, &r.lods[0].parts.nodes, r.bound);
+        eprintln!("rock: surface error {e} (claimed {})", r.lods[0].error);
+        assert!(e <= r.lods[0].error, "rock: {e} > {}", r.lods[0].error);
+    }
+
+    #[test]
+    fn a_tree_is_six_primitives_and_four_simplified() {
         let p = tree((0.0, 0.0), 6.0, 0, 1);
-        let cost: u32 = p.full.nodes.iter().map(|n| n.cost).sum();
-        assert_eq!(cost, 6);
-        assert_eq!(p.far.unwrap().nodes.len(), 1);
+        let cost = |parts: &Parts| parts.nodes.iter().map(|n| n.cost).sum::<u32>();
+        assert_eq!(cost(&p.full), 6);
+        let costs: Vec<u32> = p.lods.iter().map(|l| cost(&l.parts)).collect();
+        assert_eq!(costs, [4]);
+        // The simplified form keeps the trunk, and the crown its colour and bound.
+        let simple = &p.lods[0].parts;
+        assert_eq!(simple.nodes[0], p.full.nodes[0]);
+        assert_eq!(simple.nodes[1].material, 1);
+        assert_eq!(simple.nodes[1].bound, p.full.nodes[1].bound);
     }
 }

@@ -5,7 +5,9 @@
 use glam::{Mat3, Vec2, Vec3};
 
 use crate::noise::FbmLanes;
-use crate::plan3d::{Guard, Hash, Lift, Node, Plan, Prim, PrimKind, Shape, VALUE_NOISE3_SLOPE};
+use crate::plan3d::{
+    Guard, Hash, Lift, Node, Plan, Prim, PrimKind, Shape, Sphere, VALUE_NOISE3_SLOPE,
+};
 
 /// A primitive with its per-frame constants.
 #[derive(Clone, Copy, Debug)]
@@ -91,9 +93,7 @@ pub(super) enum ShapeC {
         centre: Vec3,
         iterations: u32,
         bailout: f32,
-        /// Beyond `radius + margin` from the centre every lane takes the distance to the
-        /// sphere of this radius (which contains the bulb) instead of the iteration.
-        skip: Option<(f32, f32)>,
+        derivative: f32,
     },
 }
 
@@ -108,6 +108,17 @@ pub(crate) struct NodeC {
     pub(super) ground: bool,
     pub(super) guard: Option<Guard>,
     pub(super) shape: ShapeC,
+    /// Whether the node is one of [`SceneConstants::planes`] (left out of the distance to
+    /// everything else that the march's plane landing compares with).
+    pub(super) plane: bool,
+}
+
+/// An unrotated, unguarded plane node of a scene without terrain: distance `dot(n, q) - c`.
+/// The march lands on it in closed form when nothing else is nearer along the ray.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PlaneC {
+    pub(crate) n: Vec3,
+    pub(crate) c: f32,
 }
 
 /// The terrain, prepared.
@@ -117,6 +128,8 @@ pub(crate) struct TerrainC {
     pub(crate) material: i32,
     pub(crate) step_scale: f32,
     pub(crate) analytic_normal: bool,
+    /// `Fbm::top`: no terrain lies above this height.
+    pub(crate) top: f32,
 }
 
 /// Everything `map` needs, computed once per frame.
@@ -127,11 +140,13 @@ pub(crate) struct SceneConstants {
     pub(crate) nodes: Vec<NodeC>,
     pub(crate) material_ids: bool,
     pub(crate) hash: Hash,
+    /// The planes the march may land on (none with a terrain or an early-out, whose
+    /// distances are not a plain minimum over nodes).
+    pub(crate) planes: Vec<PlaneC>,
+    /// The bounding spheres of every other node, when they are all finite and there is no
+    /// terrain: a ray that can meet none of them and no plane ahead has missed.
+    pub(crate) bounds: Option<Vec<Sphere>>,
 }
-
-/// The radius around a power-8 Mandelbulb's centre outside which its distance estimate
-/// (any iteration count, bailout >= 4) stays positive; see the tests.
-pub(crate) const BULB_RADIUS: f32 = 1.25;
 
 impl PrimC {
     fn new(prim: &Prim) -> PrimC {
@@ -203,15 +218,50 @@ impl SceneConstants {
             material: t.material as i32,
             step_scale: t.step_scale,
             analytic_normal: t.analytic_normal,
+            top: t.fbm.top(),
         });
-        let nodes = plan.nodes.iter().map(|n| compile_node(plan, n)).collect();
+        let mut nodes: Vec<NodeC> = plan.nodes.iter().map(|n| compile_node(plan, n)).collect();
+        let mut planes = Vec::new();
+        let mut bounds = None;
+        if terrain.is_none() && plan.early_out.is_none() {
+            let mut others = Vec::new();
+            for (node, n) in nodes.iter_mut().zip(&plan.nodes) {
+                if let Some(pl) = landing_plane(n) {
+                    node.plane = true;
+                    planes.push(pl);
+                } else {
+                    others.push(n.bound);
+                }
+            }
+            bounds = others
+                .iter()
+                .all(|b| b.radius.is_finite())
+                .then_some(others);
+        }
         SceneConstants {
             terrain,
             early_out: plan.early_out,
             nodes,
             material_ids: plan.material_ids,
             hash: plan.hash,
+            planes,
+            bounds,
         }
+    }
+}
+
+/// The node as a plane the march may land on: a bare plane primitive (no rotation, lift or
+/// guard).
+fn landing_plane(node: &Node) -> Option<PlaneC> {
+    match (&node.shape, node.lift, &node.guard) {
+        (Shape::Prim(prim), Lift::None, None) if prim.rotation.is_none() => match prim.kind {
+            PrimKind::Plane { normal, offset } => Some(PlaneC {
+                n: normal,
+                c: normal.dot(prim.centre) + offset,
+            }),
+            _ => None,
+        },
+        _ => None,
     }
 }
 
@@ -253,11 +303,12 @@ fn compile_node(plan: &Plan, node: &Node) -> NodeC {
             centre,
             iterations,
             bailout,
+            derivative,
         } => ShapeC::Mandelbulb {
             centre: *centre,
             iterations: *iterations,
             bailout: *bailout,
-            skip: (*bailout >= 4.0).then_some((BULB_RADIUS, 0.5)),
+            derivative: *derivative,
         },
     };
     NodeC {
@@ -266,5 +317,6 @@ fn compile_node(plan: &Plan, node: &Node) -> NodeC {
         ground,
         guard: node.guard,
         shape,
+        plane: false,
     }
 }

@@ -37,6 +37,21 @@ pub(crate) fn map<P: Pack>(
     mats: bool,
     tally: &mut Tally,
 ) -> (P::F, P::I) {
+    let (d, m, _) = map_split(p, s, q, active, mats, tally);
+    (d, m)
+}
+
+/// [`map`], and the distance to everything but [`SceneConstants::planes`] (the scene
+/// distance where there are none).
+#[inline(always)]
+pub(crate) fn map_split<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    q: V3<P>,
+    active: P::M,
+    mats: bool,
+    tally: &mut Tally,
+) -> (P::F, P::I, P::F) {
     let mut io = MapIo::default();
     p.store(q.x, &mut io.x);
     p.store(q.y, &mut io.y);
@@ -48,7 +63,7 @@ pub(crate) fn map<P: Pack>(
         mats,
         tally,
     });
-    (p.load(&io.d), p.load_i(&io.m))
+    (p.load(&io.d), p.load_i(&io.m), p.load(&io.rest))
 }
 
 /// The lanes of one [`map`] call, in memory (a kernel is generic over the backend, so its
@@ -60,6 +75,7 @@ struct MapIo {
     active: [f32; MAP_LANES],
     d: [f32; MAP_LANES],
     m: [i32; MAP_LANES],
+    rest: [f32; MAP_LANES],
 }
 
 /// The widest packet any backend has.
@@ -74,6 +90,7 @@ impl Default for MapIo {
             active: [0.0; MAP_LANES],
             d: [0.0; MAP_LANES],
             m: [0; MAP_LANES],
+            rest: [0.0; MAP_LANES],
         }
     }
 }
@@ -97,9 +114,10 @@ impl PackKernel for MapCall<'_> {
             z: p.load(&self.io.z),
         };
         let active = p.gt(p.load(&self.io.active), p.splat(0.5));
-        let (d, m) = map_inline(p, self.s, q, active, self.mats, self.tally);
+        let (d, m, rest) = map_inline(p, self.s, q, active, self.mats, self.tally);
         p.store(d, &mut self.io.d);
         p.store_i(m, &mut self.io.m);
+        p.store(rest, &mut self.io.rest);
     }
 }
 
@@ -112,7 +130,7 @@ fn map_inline<P: Pack>(
     active: P::M,
     mats: bool,
     tally: &mut Tally,
-) -> (P::F, P::I) {
+) -> (P::F, P::I, P::F) {
     let mut d = p.splat(f32::INFINITY);
     let mut m = p.splat_i(SKY_I);
     if let Some(t) = &s.terrain {
@@ -130,21 +148,30 @@ fn map_inline<P: Pack>(
         de = p.min(dtop, d);
         me = p.select_i(sky, p.splat_i(SKY_I), m);
         if !p.any(p.and_not(active, above)) {
-            return (de, me);
+            return (de, me, de);
         }
     }
+    // The distance without the landing planes, kept only where there are some.
+    let split = !s.planes.is_empty();
+    let mut rest = d;
     for node in &s.nodes {
         let dn = node_distance(p, s, node, q, active, tally);
         if mats {
             m = p.select_i(p.lt(dn, d), p.splat_i(node.material), m);
         }
         d = p.min(dn, d);
+        if split && !node.plane {
+            rest = p.min(dn, rest);
+        }
+    }
+    if !split {
+        rest = d;
     }
     if s.early_out.is_some() {
         d = p.select(above, de, d);
         m = p.select_i(above, me, m);
     }
-    (d, m)
+    (d, m, rest)
 }
 
 /// One node's distance at `q` (world space).
@@ -245,24 +272,14 @@ fn shape_distance<P: Pack>(
             centre,
             iterations,
             bailout,
-            skip,
+            derivative,
         } => {
+            // No bounding-sphere shortcut: its distance is larger than the estimate's, and
+            // soft shadows read every distance along the light ray, so it would change the
+            // picture.
             let c = q.sub_c(p, *centre);
-            if let Some((radius, margin)) = skip {
-                // The bounding sphere first: one SDF evaluation.
-                tally.sdf += 1;
-                let b = p.sub(c.len(p), p.splat(*radius));
-                let far = p.gt(b, p.splat(*margin));
-                let near = p.and_not(active, far);
-                if !p.any(near) {
-                    return b;
-                }
-                tally.sdf += 1;
-                let d = mandelbulb(p, c, *iterations, *bailout, near);
-                return p.select(far, b, d);
-            }
             tally.sdf += 1;
-            mandelbulb(p, c, *iterations, *bailout, active)
+            mandelbulb(p, c, (*iterations, *bailout, *derivative), active)
         }
     }
 }

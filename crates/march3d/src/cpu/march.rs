@@ -3,8 +3,9 @@
 //! define them.
 
 use super::constants::SceneConstants;
-use super::eval::{Tally, map};
+use super::eval::{Tally, map, map_split};
 use super::lanes::V3;
+use super::prims::ray_meets_sphere;
 use crate::plan3d::March;
 use crate::simd::Pack;
 
@@ -88,7 +89,7 @@ fn march_plain<P: Pack>(
             break;
         }
         let q = dir.mul_add(p, t, o);
-        let (d, dm) = map(p, s, q, active, s.material_ids, tally);
+        let (d, dm, rest) = map_split(p, s, q, active, s.material_ids, tally);
         tally.steps += p.count(active) as u64;
         let new = p.and(active, p.lt(d, p.fma(per_t, t, thr)));
         hit = p.or(hit, new);
@@ -96,9 +97,72 @@ fn march_plain<P: Pack>(
         dh = p.select(new, d, dh);
         let out = p.or(p.gt(q.len2(p), esc2), p.gt(t, far));
         active = p.and_not(p.and_not(active, new), out);
-        t = p.select(active, p.fma(d, sf, t), t);
+        let step = p.mul(d, sf);
+        let (step, ahead) = land_on_planes(p, s, (o, dir, q, t), (rest, step), (esc2, far));
+        if let Some(bounds) = &s.bounds {
+            active = p.and_not(active, can_meet_nothing(p, bounds, (q, dir), ahead));
+        }
+        t = p.select(active, p.add(t, step), t);
     }
     Hit { hit, t, m, d: dh }
+}
+
+/// The step onto the nearest plane ahead, where the ray reaches it before anything else
+/// can be met: when the distance to everything else (`rest`) is at least the distance to
+/// the plane along the ray, the segment up to the plane lies inside the sphere `rest`
+/// proves empty. Sphere tracing would approach the plane geometrically (about
+/// `ln(d / hit) / |cos|` steps, hundreds for rays that graze the floor); this lands in one,
+/// on the same surface. Landings past the escape radius or `far` are not taken, so rays
+/// miss where plain steps would. Otherwise `step` is unchanged.
+#[inline(always)]
+fn land_on_planes<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    (o, dir, q, t): (V3<P>, V3<P>, V3<P>, P::F),
+    (rest, step): (P::F, P::F),
+    (esc2, far): (P::F, P::F),
+) -> (P::F, P::F) {
+    let mut ahead = p.splat(f32::INFINITY);
+    if s.planes.is_empty() {
+        return (step, ahead);
+    }
+    let zero = p.splat(0.0);
+    for pl in &s.planes {
+        let n = V3::splat(p, pl.n);
+        let dist = p.sub(n.dot(p, q), p.splat(pl.c));
+        let closing = p.neg(n.dot(p, dir));
+        let toward = p.and(p.gt(dist, zero), p.gt(closing, zero));
+        ahead = p.select(toward, p.min(ahead, p.div(dist, closing)), ahead);
+    }
+    let t_land = p.add(t, ahead);
+    let inside = p.and(
+        p.le(dir.mul_add(p, t_land, o).len2(p), esc2),
+        p.le(t_land, far),
+    );
+    let land = p.and(inside, p.and(p.ge(rest, ahead), p.gt(ahead, step)));
+    (p.select(land, ahead, step), ahead)
+}
+
+/// Lanes whose ray from `q` along `dir` can meet none of `bounds` (it starts outside each
+/// and points away from it, or passes it by) and has no plane `ahead`: every surface lies
+/// inside its node's bound, so such a ray misses, and marching it on to the escape radius
+/// would only confirm that.
+#[inline(always)]
+fn can_meet_nothing<P: Pack>(
+    p: P,
+    bounds: &[crate::plan3d::Sphere],
+    (q, dir): (V3<P>, V3<P>),
+    ahead: P::F,
+) -> P::M {
+    let mut may = p.lt(ahead, p.splat(f32::INFINITY));
+    for s in bounds {
+        let inside = p.lt(
+            V3::splat(p, s.centre).sub(p, q).len2(p),
+            p.splat(s.radius * s.radius),
+        );
+        may = p.or(may, p.or(inside, ray_meets_sphere(p, q, dir, s)));
+    }
+    p.and_not(p.all_set(), may)
 }
 
 /// Over-relaxed sphere tracing: steps of `relax * d` while the unbounding spheres of
@@ -123,6 +187,8 @@ fn march_relaxed<P: Pack>(
     let mut hit = p.none();
     let mut m = p.splat_i(super::eval::SKY_I);
     let mut dh = zero;
+    // Lanes whose last step landed on a plane: proven safe, so not checked for overlap.
+    let mut landed = p.none();
     let (thr, per_t) = (p.splat(mc.m.hit), p.splat(mc.m.hit_per_t));
     let (esc2, far, sf) = (
         p.splat(mc.escape2),
@@ -134,9 +200,9 @@ fn march_relaxed<P: Pack>(
             break;
         }
         let q = dir.mul_add(p, t, o);
-        let (d, dm) = map(p, s, q, active, s.material_ids, tally);
+        let (d, dm, rest) = map_split(p, s, q, active, s.material_ids, tally);
         tally.steps += p.count(active) as u64;
-        let relaxing = p.gt(omega, one);
+        let relaxing = p.and_not(p.gt(omega, one), landed);
         let fail = if k == 0 {
             p.none()
         } else {
@@ -156,6 +222,13 @@ fn march_relaxed<P: Pack>(
         t_prev = p.select(adv, t, t_prev);
         d_prev = p.select(adv, d, d_prev);
         step = p.select(adv, p.mul(p.mul(omega, d), sf), step);
+        let (landing, ahead) = land_on_planes(p, s, (o, dir, q, t), (rest, step), (esc2, far));
+        landed = p.and(adv, p.gt(landing, step));
+        step = p.select(adv, landing, step);
+        if let Some(bounds) = &s.bounds {
+            let gone = p.and(adv, can_meet_nothing(p, bounds, (q, dir), ahead));
+            active = p.and_not(active, gone);
+        }
         t = p.select(fail, t_back, p.select(adv, p.add(t, step), t));
     }
     Hit { hit, t, m, d: dh }
@@ -176,23 +249,36 @@ pub(crate) fn soft_shadow<P: Pack>(
     live: P::M,
     tally: &mut Tally,
 ) -> P::F {
+    // The ray starts at `q` with `s` already at the offset, as the reference renderer's
+    // does: `s` runs `ray_offset` ahead of the distance travelled from `q`.
     let q = n.mul_add(p, p.splat(mc.m.ray_offset), pos);
     let mut sv = p.splat(mc.m.ray_offset);
+    let mut x = q;
     let mut res = p.splat(1.0);
+    let mut prev = p.splat(1e20);
     let mut active = live;
     let (thr, kv, esc2) = (p.splat(mc.m.hit), p.splat(k), p.splat(mc.escape2));
+    let zero = p.splat(0.0);
     for _ in 0..steps {
         if !p.any(active) {
             break;
         }
-        let (h, _) = map(p, s, l.mul_add(p, sv, q), active, false, tally);
+        let (h, _) = map(p, s, x, active, false, tally);
         tally.steps += p.count(active) as u64;
         let blocked = p.and(active, p.lt(h, thr));
         res = p.select(blocked, p.splat(0.0), res);
         active = p.and_not(active, blocked);
-        res = p.select(active, p.min(res, p.div(p.mul(kv, h), sv)), res);
+        // The closest approach between this sphere and the previous one.
+        let h2 = p.mul(h, h);
+        let y = p.div(h2, p.mul(p.splat(2.0), prev));
+        let d = p.sqrt(p.max(p.fnma(y, y, h2), zero));
+        let along = p.sub(sv, y);
+        let bound = p.and(active, p.gt(along, zero));
+        res = p.select(bound, p.min(res, p.div(p.mul(kv, d), along)), res);
+        prev = p.select(active, h, prev);
         sv = p.select(active, p.add(sv, h), sv);
-        let done = p.or(p.gt(sv, limit), p.gt(l.mul_add(p, sv, q).len2(p), esc2));
+        x = V3::select(p, active, l.mul_add(p, h, x), x);
+        let done = p.or(p.gt(sv, limit), p.gt(x.len2(p), esc2));
         active = p.and_not(active, done);
     }
     res

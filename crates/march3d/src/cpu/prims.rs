@@ -143,20 +143,19 @@ fn octahedron<P: Pack>(p: P, l: V3<P>, s: f32, active: P::M) -> P::F {
 pub(crate) fn mandelbulb<P: Pack>(
     p: P,
     c: V3<P>,
-    iterations: u32,
-    bailout: f32,
+    (iterations, bailout, derivative): (u32, f32, f32),
     active: P::M,
 ) -> P::F {
     let mut w = c;
     let mut m = w.len2(p);
-    let mut dz = p.splat(1.0);
+    let mut dz = p.splat(derivative);
     let mut live = active;
     let bail = p.splat(bailout);
     for _ in 0..iterations {
-        // dz = 8 m^3.5 dz + 1.
-        let m3 = p.mul(p.mul(m, m), m);
-        let k = p.mul(p.mul(p.splat(8.0), m3), p.sqrt(m));
-        let ndz = p.fma(k, dz, p.splat(1.0));
+        // dz = 8 m^3.5 dz + 1, in the reference's order.
+        let m2 = p.mul(m, m);
+        let k = p.mul(m, p.mul(m2, p.mul(p.sqrt(m), dz)));
+        let ndz = p.add(p.mul(p.splat(8.0), k), p.splat(1.0));
         let nw = bulb8(p, w).add(p, c);
         let nm = nw.len2(p);
         dz = p.select(live, ndz, dz);
@@ -167,38 +166,63 @@ pub(crate) fn mandelbulb<P: Pack>(
             break;
         }
     }
-    let num = p.mul(p.mul(p.splat(0.25), math::log(p, m)), p.sqrt(m));
+    let num = p.mul(p.splat(0.25), p.mul(math::log(p, m), p.sqrt(m)));
     p.div(num, dz)
 }
 
 /// `w^8` in the spherical power-8 form `r^8 (sin b sin a, cos b, sin b cos a)`, `b = 8
-/// acos(w.y / r)`, `a = 8 atan2(w.x, w.z)`, without trigonometry: with `rho = |w.xz|`, `r^8
-/// (cos b, sin b) = (y + i rho)^8` and `(cos a, sin a) = ((z + i x) / rho)^8`, both by
-/// three complex squarings.
+/// acos(w.y / r)`, `a = 8 atan2(w.x, w.z)`, as polynomials in `x, y, z` (Quilez's closed
+/// form) with `rho = |w.xz|`: `k1 = x^4 + y^4 + z^4 - 6 y^2 rho^2 + 2 x^2 z^2`, `k2 =
+/// rho^-7`, `k4 = x^2 - y^2 + z^2`. The operations and their order are the reference
+/// renderer's (and the WGSL's), so that the fractal's surface, which magnifies every
+/// rounding, comes out the same.
 #[inline(always)]
 pub(crate) fn bulb8<P: Pack>(p: P, w: V3<P>) -> V3<P> {
-    let two = p.splat(2.0);
-    let rho2 = p.fma(w.x, w.x, p.mul(w.z, w.z));
-    // rho = 0 (on the axis): a = 0 by atan2(0, 0); any unit (zn, xn) gives sin b = 0.
-    let rho = p.sqrt(rho2);
-    let inv = p.div(p.splat(1.0), p.max(rho, p.splat(1e-30)));
-    let (xn, zn) = (p.mul(w.x, inv), p.mul(w.z, inv));
-    // (zn + i xn)^8.
-    let (mut ca, mut sa) = (p.fnma(xn, xn, p.mul(zn, zn)), p.mul(two, p.mul(xn, zn)));
-    for _ in 0..2 {
-        let (c2, s2) = (p.fnma(sa, sa, p.mul(ca, ca)), p.mul(two, p.mul(sa, ca)));
-        (ca, sa) = (c2, s2);
-    }
-    // (y + i rho)^8.
-    let (mut cb, mut sb) = (p.sub(p.mul(w.y, w.y), rho2), p.mul(two, p.mul(w.y, rho)));
-    for _ in 0..2 {
-        let (c2, s2) = (p.fnma(sb, sb, p.mul(cb, cb)), p.mul(two, p.mul(sb, cb)));
-        (cb, sb) = (c2, s2);
-    }
+    let (x, y, z) = (w.x, w.y, w.z);
+    let (x2, y2, z2) = (p.mul(x, x), p.mul(y, y), p.mul(z, z));
+    let (x4, y4, z4) = (p.mul(x2, x2), p.mul(y2, y2), p.mul(z2, z2));
+    let x2z2 = p.mul(x2, z2);
+    let x4z4 = p.add(x4, z4);
+    let rho2 = p.add(x2, z2);
+    let rho4 = p.mul(rho2, rho2);
+    let rho7 = p.mul(rho2, p.mul(rho4, p.sqrt(rho2)));
+    // On the axis (rho = 0) a = atan2(0, 0) = 0 and sin b = 0: x and z are 0, not 0 * inf.
+    let k2 = p.select(
+        p.gt(rho2, p.splat(0.0)),
+        p.div(p.splat(1.0), rho7),
+        p.splat(0.0),
+    );
+    let six_y2_rho2 = p.mul(p.splat(-6.0), p.mul(y2, rho2));
+    let k1 = p.add(
+        x4z4,
+        p.add(y4, p.add(six_y2_rho2, p.mul(p.splat(2.0), x2z2))),
+    );
+    let k4 = p.add(p.sub(x2, y2), z2);
+    let k12 = p.mul(k1, k2);
+    let ax = p.add(x4, p.add(p.mul(p.splat(-6.0), x2z2), z4));
+    let nx = p.mul(
+        p.splat(64.0),
+        p.mul(
+            x,
+            p.mul(y, p.mul(z, p.mul(p.sub(x2, z2), p.mul(k4, p.mul(ax, k12))))),
+        ),
+    );
+    let az = p.add(
+        p.mul(p.splat(28.0), p.mul(x2z2, x4z4)),
+        p.sub(
+            p.mul(p.sub(p.mul(p.splat(-70.0), x4), z4), z4),
+            p.mul(x4, x4),
+        ),
+    );
+    let nz = p.mul(p.splat(8.0), p.mul(y, p.mul(k4, p.mul(az, k12))));
+    let ny = p.add(
+        p.mul(p.mul(p.mul(p.mul(p.splat(-16.0), y2), rho2), k4), k4),
+        p.mul(k1, k1),
+    );
     V3 {
-        x: p.mul(sb, sa),
-        y: cb,
-        z: p.mul(sb, ca),
+        x: nx,
+        y: ny,
+        z: nz,
     }
 }
 
@@ -215,7 +239,8 @@ pub(crate) fn ray_meets_sphere<P: Pack>(p: P, o: V3<P>, dir: V3<P>, s: &Sphere) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cpu::constants::BULB_RADIUS;
+    /// The bulb's bounding radius in the emitter (`compile::objects`).
+    const BULB_RADIUS: f32 = 1.25;
     use crate::simd::Scalar;
 
     /// The trigonometric form of the power-8 step, in f64.
@@ -300,8 +325,8 @@ mod tests {
     }
 
     #[test]
-    fn bulb_distance_is_positive_outside_the_skip_radius() {
-        // The skip sphere must contain the whole surface, for every iteration count.
+    fn bulb_distance_is_positive_outside_its_bound() {
+        // The bounding sphere must contain the whole surface, for every iteration count.
         for iterations in 1..=8 {
             for (i, w) in points().enumerate() {
                 let n = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
@@ -311,7 +336,7 @@ mod tests {
                     y: (w[1] / n * r) as f32,
                     z: (w[2] / n * r) as f32,
                 };
-                let d = mandelbulb(Scalar, c, iterations, 256.0, true);
+                let d = mandelbulb(Scalar, c, (iterations, 256.0, 1.5), true);
                 assert!(d > 0.01, "{iterations} iterations at {r}: {d}");
             }
         }

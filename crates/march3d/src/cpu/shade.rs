@@ -4,10 +4,10 @@
 
 use glam::Vec3;
 
-use super::constants::SceneConstants;
+use super::constants::{SceneConstants, TerrainC};
 use super::eval::{Tally, map};
 use super::lanes::V3;
-use super::march::{MarchC, march, normal, soft_shadow};
+use super::march::{Hit, MarchC, march, normal, soft_shadow};
 use super::prims::ray_meets_sphere;
 use crate::math;
 use crate::plan3d::{
@@ -74,30 +74,45 @@ fn looks<P: Pack>(p: P, f: &Frame, m: P::I, live: P::M) -> (V3<P>, P::F) {
     )
 }
 
-/// The camera rays of pixels `i0 .. i0 + WIDTH` of row `j` (lanes past the image repeat
-/// its last column).
+/// The camera rays of the packet whose top-left pixel is `(i0, j0)`, laid out by
+/// [`packet_shape`] (lanes past the image repeat its last column or row).
 #[inline(always)]
-pub(crate) fn camera_rays<P: Pack>(p: P, f: &Frame, i0: u32, j: u32) -> V3<P> {
-    let mut xs = [0.0f32; MAX_WIDTH];
-    for (lane, x) in xs.iter_mut().enumerate().take(P::WIDTH) {
-        *x = (i0 + lane as u32).min(f.width - 1) as f32;
+pub(crate) fn camera_rays<P: Pack>(p: P, f: &Frame, (i0, j0): (u32, u32)) -> V3<P> {
+    let (pw, _) = packet_shape::<P>();
+    let (mut xs, mut ys) = ([0.0f32; MAX_WIDTH], [0.0f32; MAX_WIDTH]);
+    for lane in 0..P::WIDTH as u32 {
+        xs[lane as usize] = (i0 + lane % pw).min(f.width - 1) as f32;
+        ys[lane as usize] = (j0 + lane / pw).min(f.height - 1) as f32;
     }
     let c = &f.camera;
     let (w, h) = (f.width as f32, f.height as f32);
-    let i = p.load(&xs);
+    let (i, j) = (p.load(&xs), p.load(&ys));
+    let (one, half, two) = (p.splat(1.0), p.splat(0.5), p.splat(2.0));
     // x = (2 (i + 0.5) / W - 1) * aspect * tan, y = (1 - 2 (j + 0.5) / H) * tan.
     let x = p.mul(
-        p.sub(
-            p.div(p.mul(p.splat(2.0), p.add(i, p.splat(0.5))), p.splat(w)),
-            p.splat(1.0),
-        ),
+        p.sub(p.div(p.mul(two, p.add(i, half)), p.splat(w)), one),
         p.splat(w / h * c.tan_half_fov),
     );
-    let y = (1.0 - 2.0 * (j as f32 + 0.5) / h) * c.tan_half_fov;
-    let base = c.forward + c.up * y;
-    V3::splat(p, c.right)
-        .mul_add(p, x, V3::splat(p, base))
-        .normalize(p)
+    let y = p.mul(
+        p.sub(one, p.div(p.mul(two, p.add(j, half)), p.splat(h))),
+        p.splat(c.tan_half_fov),
+    );
+    let base = V3 {
+        x: p.add(p.splat(c.forward.x), p.mul(p.splat(c.up.x), y)),
+        y: p.add(p.splat(c.forward.y), p.mul(p.splat(c.up.y), y)),
+        z: p.add(p.splat(c.forward.z), p.mul(p.splat(c.up.z), y)),
+    };
+    V3::splat(p, c.right).mul_add(p, x, base).normalize(p)
+}
+
+/// The pixels of one packet, `(columns, rows)`: as square as the lane count allows (4x4 on
+/// 16 lanes, 4x2 on 8, 2x2 on 4), so that a packet's rays stay close together and its lanes
+/// finish their marches at similar steps.
+#[inline(always)]
+pub(crate) fn packet_shape<P: Pack>() -> (u32, u32) {
+    let lanes = P::WIDTH as u32;
+    let rows = 1 << (lanes.trailing_zeros() / 2);
+    (lanes / rows, rows)
 }
 
 /// Gamma-encoded colours of the camera rays `dir` (lanes of `live`).
@@ -208,7 +223,9 @@ fn paper_local<P: Pack>(
                 &f.scene,
                 &f.march,
                 (q, n, l),
-                r,
+                // As in the reference renderer, the light ray runs until it escapes, past
+                // the light.
+                p.splat(f32::INFINITY),
                 k,
                 f.march.m.max_steps,
                 lit,
@@ -251,12 +268,15 @@ fn world<P: Pack>(
     let one = p.splat(1.0);
     let sky = mix_c(p, w.sky[0], w.sky[1], p.max(zero, p.min(one, dir.y)));
     let o = V3::splat(p, f.camera.position);
-    let h = march(p, &f.scene, &f.march, o, dir, live, tally);
+    let mut h = march(p, &f.scene, &f.march, o, dir, live, tally);
+    let mut q = dir.mul_add(p, h.t, o);
+    if let Some(t) = &f.scene.terrain {
+        land_on_terrain(p, t, (o, dir), live, (&mut h, &mut q), tally);
+    }
     let hit = p.and(live, h.hit);
     if !p.any(hit) {
         return encode3(p, sky, w.gamma);
     }
-    let q = dir.mul_add(p, h.t, o);
     let n = normal(p, &f.scene, &f.march, (q, h.m, h.d), hit, tally);
     let (albedo, _) = looks(p, f, h.m, hit);
     let sun = V3::splat(p, w.sun);
@@ -291,6 +311,37 @@ fn world<P: Pack>(
     let s0 = V3::splat(p, w.sky[0]);
     let fogged = c.sub(p, s0).mul_add(p, keep, s0);
     encode3(p, V3::select(p, hit, fogged, sky), w.gamma)
+}
+
+/// Lanes of `live` whose march stopped without a hit (out of steps or past `far`) while
+/// pointing below the horizon or ending below the terrain's top become terrain hits at the
+/// height field under their end point: such a ray can only be looking at the ground, and
+/// shading it as sky draws sky through the hills.
+#[inline(always)]
+fn land_on_terrain<P: Pack>(
+    p: P,
+    t: &TerrainC,
+    (o, dir): (V3<P>, V3<P>),
+    live: P::M,
+    (h, q): (&mut Hit<P>, &mut V3<P>),
+    tally: &mut Tally,
+) {
+    let zero = p.splat(0.0);
+    let low = p.or(p.lt(dir.y, zero), p.lt(q.y, p.splat(t.top)));
+    let land = p.and(p.and_not(live, h.hit), low);
+    if !p.any(land) {
+        return;
+    }
+    tally.sdf += 1;
+    let ground = V3 {
+        y: t.fbm.height_only(p, q.x, q.z),
+        ..*q
+    };
+    *q = V3::select(p, land, ground, *q);
+    h.t = p.select(land, ground.sub(p, o).len(p), h.t);
+    h.d = p.select(land, zero, h.d);
+    h.m = p.select_i(land, p.splat_i(t.material), h.m);
+    h.hit = p.or(h.hit, land);
 }
 
 /// The sun shadow of world shading: 1 lit, 0 shadowed (soft in between for `Full`).

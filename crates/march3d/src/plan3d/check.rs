@@ -291,7 +291,16 @@ fn check_node(i: usize, node: &Node, count: usize) -> Result<(), PlanError> {
             centre,
             iterations,
             bailout,
+            derivative,
         } => {
+            finite(&format!("{what}.derivative"), *derivative)?;
+            if *derivative <= 0.0 {
+                return Err(PlanError::Invalid {
+                    what: format!("{what}.derivative"),
+                    value: *derivative,
+                    expected: "positive",
+                });
+            }
             finite_vec(&format!("{what}.centre"), *centre)?;
             if *iterations > MAX_MANDELBULB_ITERATIONS {
                 return Err(PlanError::Range {

@@ -39,7 +39,8 @@
 //!   evaluates row `c = clamp(round(z / spacing), 0, count - 1)` and its neighbour `c +
 //!   sign(z - c * spacing)` when that is in range (1-2 evaluations); without it, all rows,
 //!   `min` over them.
-//! * [`Shape::Mandelbulb`]: the power-8 bulb, `w = p - centre`, `m = dot(w, w)`, `dz = 1`;
+//! * [`Shape::Mandelbulb`]: the power-8 bulb, `w = p - centre`, `m = dot(w, w)`,
+//!   `dz = derivative`;
 //!   `iterations` times: `dz = 8 * m^3.5 * dz + 1`, `w = (p - centre) + bulb8(w)`,
 //!   `m = dot(w, w)`, stop when `m > bailout`; distance `0.25 * ln(m) * sqrt(m) / dz`.
 //!   `bulb8` is the trigonometric form `r^8 (sin(b) sin(a), cos(b), sin(b) cos(a))` with
@@ -81,11 +82,20 @@
 //! consecutive points overlap, falling back to the previous point and plain steps when they
 //! do not.
 //!
+//! World shading with a terrain: a ray that stops without a hit (out of steps, past `far`
+//! or escaped) while pointing below the horizon (`dir.y < 0`) or ending below the
+//! terrain's top ([`Fbm::top`]) lands on the height field: it is shaded as a terrain hit at
+//! `(x, height(x, z), z)` under its end point, at that point's distance. Such a ray can
+//! only be looking at the ground; shading it as sky drew sky through grazing hills.
+//!
 //! Soft shadow (paper shading, [`ShadowMode::Full`]) from `p` towards unit `l`, up to
-//! distance `limit`: `q = p + n * ray_offset, s = ray_offset, res = 1`; per step (at most
-//! `max_steps`, or `ShadowMode::Full::steps`): `h = map(q + s l)`; if `h < hit` the
-//! result is 0; `res = min(res, k h / s)`; `s += h`; stop when `s > limit` or `|q + s l| >
-//! escape`.
+//! distance `limit` (paper shading: none; the ray runs past the light, as the reference
+//! renderer's does): `x = q = p + n * ray_offset, s = ray_offset, res = 1, ph = 1e20` (`s`
+//! runs `ray_offset` ahead of the distance from `q`); per step (at most `max_steps`, or
+//! `ShadowMode::Full::steps`): `h = map(x)`; if `h < hit`
+//! the result is 0; the closest approach between this step's sphere and the previous one,
+//! `y = h^2 / (2 ph), d = sqrt(max(h^2 - y^2, 0))`; when `s - y > 0`, `res = min(res, k d /
+//! (s - y))`; `ph = h, s += h, x += h l`; stop when `s > limit` or `|x| > escape`.
 //!
 //! # Counting
 //! One *SDF evaluation* is one call of a primitive's distance, of the terrain height, of a
@@ -315,6 +325,10 @@ pub enum Shape {
         iterations: u32,
         /// Escape when `|w|^2 > bailout`.
         bailout: f32,
+        /// The running derivative's start value: 1 in the textbook estimate; the reference
+        /// renderer starts at 1.5, which makes its estimate smaller (more conservative) and
+        /// so changes its soft shadows.
+        derivative: f32,
     },
 }
 
@@ -427,7 +441,8 @@ pub enum Shading {
 /// sum pow(max(dot(reflect(-l, n), -dir), 0), shininess) * shadow * intensity`; times the
 /// fog `exp(-fog * t^3)`; plus reflections (`reflectivity * reflection_scale` times the
 /// colour traced along the mirror direction, up to `bounces` bounces); then each channel
-/// clamped to [0, 1] and raised to `gamma`. Misses are black.
+/// clamped to [0, 1] and raised to `gamma`. Misses are black. Bytes are `floor(c * 255)`,
+/// the reference's truncation (world shading rounds).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PaperShading {

@@ -10,8 +10,8 @@
 //! over it and instantiated per backend inside a function compiled with the backend's
 //! instruction set (`Pack::call`). `unsafe` lives only in the per-architecture files.
 //!
-//! Choosing: [`best`] picks AVX2+FMA (8 lanes) on x86_64 or NEON (4 lanes) on aarch64, else
-//! the scalar path. Detection, the environment variable `CRATERFIELD_BACKEND` that caps the
+//! Choosing: [`best`] picks AVX-512F (16 lanes) or AVX2+FMA (8 lanes) on x86_64, NEON (4
+//! lanes) on aarch64, else the scalar path. Detection, the environment variable `CRATERFIELD_BACKEND` that caps the
 //! choice, and the errors are the field's too ([`craterfield_core::backend`]); the
 //! `force-scalar` feature compiles only the scalar path.
 
@@ -25,6 +25,8 @@ mod tests;
 
 #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
 mod avx2;
+#[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+mod avx512;
 #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
 mod neon;
 
@@ -100,7 +102,12 @@ pub trait Pack: Lanes {
 }
 
 /// The backends the tracer has code for (the others fall back as [`craterfield_core::backend`] says).
-pub const TRACER_BACKENDS: [Backend; 3] = [Backend::Scalar, Backend::Avx2, Backend::Neon];
+pub const TRACER_BACKENDS: [Backend; 4] = [
+    Backend::Scalar,
+    Backend::Avx2,
+    Backend::Avx512,
+    Backend::Neon,
+];
 
 /// What [`Backend::check_of`] and the errors call the tracer.
 const TRACER: &str = "the CPU sphere tracer";
@@ -122,6 +129,10 @@ pub fn run<K: PackKernel>(backend: Backend, k: K) -> Result<K::Output, BackendEr
         Backend::Scalar => Ok(Pack::call(Scalar, k)),
         #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
         Backend::Avx2 => craterfield_core::simd::Avx2::new()
+            .map(|p| Pack::call(p, k))
+            .ok_or_else(|| backend.unavailable_to(&TRACER_BACKENDS)),
+        #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+        Backend::Avx512 => craterfield_core::simd::Avx512::new()
             .map(|p| Pack::call(p, k))
             .ok_or_else(|| backend.unavailable_to(&TRACER_BACKENDS)),
         #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]

@@ -82,7 +82,8 @@ fn int_inputs() -> Vec<i32> {
 
 /// `v` padded with zeros to a multiple of 8 lanes (a multiple of every backend's width).
 fn pad<T: Copy + Default>(mut v: Vec<T>) -> Vec<T> {
-    while !v.len().is_multiple_of(8) {
+    // A whole number of the widest packets (AVX-512's 16 lanes).
+    while !v.len().is_multiple_of(16) {
         v.push(T::default());
     }
     v
@@ -123,6 +124,14 @@ fn on_every_backend<K: PackKernel + Clone>(k: K) -> Vec<(&'static str, usize, K:
         out.push((
             "avx2",
             craterfield_core::simd::Avx2::WIDTH,
+            Pack::call(p, k.clone()),
+        ));
+    }
+    #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+    if let Some(p) = craterfield_core::simd::Avx512::new() {
+        out.push((
+            "avx512",
+            craterfield_core::simd::Avx512::WIDTH,
             Pack::call(p, k.clone()),
         ));
     }
