@@ -5,6 +5,9 @@ use glam::Vec3;
 
 use crate::simd::Pack;
 
+/// The widest packet any backend uses.
+pub(crate) const MAX_WIDTH: usize = 16;
+
 /// `P::WIDTH` 3D vectors, one per lane.
 pub(crate) struct V3<P: Pack> {
     pub x: P::F,

@@ -54,13 +54,25 @@ pub(crate) fn march<P: Pack>(
     } else {
         march_plain(p, s, mc, o, dir, live, tally)
     };
+    find_materials(p, s, (o, dir), &mut h, tally);
+    h
+}
+
+/// The materials of the hits of a march that kept distances only: one more full
+/// evaluation at each hit.
+#[inline(always)]
+pub(crate) fn find_materials<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    (o, dir): (V3<P>, V3<P>),
+    h: &mut Hit<P>,
+    tally: &mut Tally,
+) {
     if !s.material_ids && p.any(h.hit) {
-        // The march kept distances only: one more full evaluation finds the materials.
         let q = dir.mul_add(p, h.t, o);
         let (_, m) = map(p, s, q, h.hit, true, tally);
         h.m = p.select_i(h.hit, m, h.m);
     }
-    h
 }
 
 #[inline(always)]
@@ -73,38 +85,82 @@ fn march_plain<P: Pack>(
     live: P::M,
     tally: &mut Tally,
 ) -> Hit<P> {
-    let mut t = p.splat(0.0);
-    let mut active = live;
-    let mut hit = p.none();
-    let mut m = p.splat_i(super::eval::SKY_I);
-    let mut dh = p.splat(0.0);
+    let mut st = PlainState::start(p, live);
+    for _ in 0..mc.m.max_steps {
+        if !p.any(st.active) {
+            break;
+        }
+        plain_step(p, s, mc, (o, dir), &mut st, tally);
+    }
+    Hit {
+        hit: st.hit,
+        t: st.t,
+        m: st.m,
+        d: st.d,
+    }
+}
+
+/// The lanes of a plain march between steps.
+pub(crate) struct PlainState<P: Pack> {
+    /// Distance along the ray.
+    pub t: P::F,
+    /// Lanes still marching.
+    pub active: P::M,
+    /// Lanes that hit, with the material and scene distance of their hit.
+    pub hit: P::M,
+    pub m: P::I,
+    pub d: P::F,
+}
+
+impl<P: Pack> PlainState<P> {
+    /// Every lane of `live` at the ray's origin, nothing hit.
+    #[inline(always)]
+    pub(crate) fn start(p: P, live: P::M) -> PlainState<P> {
+        PlainState {
+            t: p.splat(0.0),
+            active: live,
+            hit: p.none(),
+            m: p.splat_i(super::eval::SKY_I),
+            d: p.splat(0.0),
+        }
+    }
+}
+
+/// One plain sphere-tracing step of the active lanes (each lane's result depends on its
+/// own ray alone, which lets [`super::stream`] refill lanes as their rays finish).
+#[inline(always)]
+pub(crate) fn plain_step<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    mc: &MarchC,
+    (o, dir): (V3<P>, V3<P>),
+    st: &mut PlainState<P>,
+    tally: &mut Tally,
+) {
     let (thr, per_t) = (p.splat(mc.m.hit), p.splat(mc.m.hit_per_t));
     let (esc2, far, sf) = (
         p.splat(mc.escape2),
         p.splat(mc.m.far),
         p.splat(mc.m.step_factor),
     );
-    for _ in 0..mc.m.max_steps {
-        if !p.any(active) {
-            break;
-        }
-        let q = dir.mul_add(p, t, o);
-        let (d, dm, rest) = map_split(p, s, q, active, s.material_ids, tally);
-        tally.steps += p.count(active) as u64;
-        let new = p.and(active, p.lt(d, p.fma(per_t, t, thr)));
-        hit = p.or(hit, new);
-        m = p.select_i(new, dm, m);
-        dh = p.select(new, d, dh);
-        let out = p.or(p.gt(q.len2(p), esc2), p.gt(t, far));
-        active = p.and_not(p.and_not(active, new), out);
-        let step = p.mul(d, sf);
-        let (step, ahead) = land_on_planes(p, s, (o, dir, q, t), (rest, step), (esc2, far));
-        if let Some(bounds) = &s.bounds {
-            active = p.and_not(active, can_meet_nothing(p, bounds, (q, dir), ahead));
-        }
-        t = p.select(active, p.add(t, step), t);
+    let t = st.t;
+    let mut active = st.active;
+    let q = dir.mul_add(p, t, o);
+    let (d, dm, rest) = map_split(p, s, q, active, s.material_ids, tally);
+    tally.steps += p.count(active) as u64;
+    let new = p.and(active, p.lt(d, p.fma(per_t, t, thr)));
+    st.hit = p.or(st.hit, new);
+    st.m = p.select_i(new, dm, st.m);
+    st.d = p.select(new, d, st.d);
+    let out = p.or(p.gt(q.len2(p), esc2), p.gt(t, far));
+    active = p.and_not(p.and_not(active, new), out);
+    let step = p.mul(d, sf);
+    let (step, ahead) = land_on_planes(p, s, (o, dir, q, t), (rest, step), (esc2, far));
+    if let Some(bounds) = &s.bounds {
+        active = p.and_not(active, can_meet_nothing(p, bounds, (q, dir), ahead));
     }
-    Hit { hit, t, m, d: dh }
+    st.t = p.select(active, p.add(t, step), t);
+    st.active = active;
 }
 
 /// The step onto the nearest plane ahead, where the ray reaches it before anything else
@@ -249,39 +305,77 @@ pub(crate) fn soft_shadow<P: Pack>(
     live: P::M,
     tally: &mut Tally,
 ) -> P::F {
-    // The ray starts at `q` with `s` already at the offset, as the reference renderer's
-    // does: `s` runs `ray_offset` ahead of the distance travelled from `q`.
-    let q = n.mul_add(p, p.splat(mc.m.ray_offset), pos);
-    let mut sv = p.splat(mc.m.ray_offset);
-    let mut x = q;
-    let mut res = p.splat(1.0);
-    let mut prev = p.splat(1e20);
-    let mut active = live;
-    let (thr, kv, esc2) = (p.splat(mc.m.hit), p.splat(k), p.splat(mc.escape2));
-    let zero = p.splat(0.0);
+    let mut st = ShadowState::start(p, mc, (pos, n), live);
     for _ in 0..steps {
-        if !p.any(active) {
+        if !p.any(st.active) {
             break;
         }
-        let (h, _) = map(p, s, x, active, false, tally);
-        tally.steps += p.count(active) as u64;
-        let blocked = p.and(active, p.lt(h, thr));
-        res = p.select(blocked, p.splat(0.0), res);
-        active = p.and_not(active, blocked);
-        // The closest approach between this sphere and the previous one.
-        let h2 = p.mul(h, h);
-        let y = p.div(h2, p.mul(p.splat(2.0), prev));
-        let d = p.sqrt(p.max(p.fnma(y, y, h2), zero));
-        let along = p.sub(sv, y);
-        let bound = p.and(active, p.gt(along, zero));
-        res = p.select(bound, p.min(res, p.div(p.mul(kv, d), along)), res);
-        prev = p.select(active, h, prev);
-        sv = p.select(active, p.add(sv, h), sv);
-        x = V3::select(p, active, l.mul_add(p, h, x), x);
-        let done = p.or(p.gt(sv, limit), p.gt(x.len2(p), esc2));
-        active = p.and_not(active, done);
+        shadow_step(p, s, mc, (l, limit, k), &mut st, tally);
     }
-    res
+    st.res
+}
+
+/// The lanes of a soft-shadow march between steps.
+pub(crate) struct ShadowState<P: Pack> {
+    /// The point reached.
+    pub x: V3<P>,
+    /// The distance travelled, plus the ray's offset.
+    pub s: P::F,
+    /// The shadow so far.
+    pub res: P::F,
+    /// The previous step's scene distance.
+    pub prev: P::F,
+    pub active: P::M,
+}
+
+impl<P: Pack> ShadowState<P> {
+    /// The lanes of `live` at `pos` (normal `n`), moved off the surface.
+    #[inline(always)]
+    pub(crate) fn start(p: P, mc: &MarchC, (pos, n): (V3<P>, V3<P>), live: P::M) -> Self {
+        // The ray starts at `q` with `s` already at the offset, as the reference renderer's
+        // does: `s` runs `ray_offset` ahead of the distance travelled from `q`.
+        ShadowState {
+            x: n.mul_add(p, p.splat(mc.m.ray_offset), pos),
+            s: p.splat(mc.m.ray_offset),
+            res: p.splat(1.0),
+            prev: p.splat(1e20),
+            active: live,
+        }
+    }
+}
+
+/// One soft-shadow step towards unit `l` of the active lanes (per lane, as
+/// [`plain_step`]).
+#[inline(always)]
+pub(crate) fn shadow_step<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    mc: &MarchC,
+    (l, limit, k): (V3<P>, P::F, f32),
+    st: &mut ShadowState<P>,
+    tally: &mut Tally,
+) {
+    let (thr, kv, esc2) = (p.splat(mc.m.hit), p.splat(k), p.splat(mc.escape2));
+    let zero = p.splat(0.0);
+    let mut active = st.active;
+    let (h, _) = map(p, s, st.x, active, false, tally);
+    tally.steps += p.count(active) as u64;
+    let blocked = p.and(active, p.lt(h, thr));
+    let mut res = p.select(blocked, p.splat(0.0), st.res);
+    active = p.and_not(active, blocked);
+    // The closest approach between this sphere and the previous one.
+    let h2 = p.mul(h, h);
+    let y = p.div(h2, p.mul(p.splat(2.0), st.prev));
+    let d = p.sqrt(p.max(p.fnma(y, y, h2), zero));
+    let along = p.sub(st.s, y);
+    let bound = p.and(active, p.gt(along, zero));
+    res = p.select(bound, p.min(res, p.div(p.mul(kv, d), along)), res);
+    st.prev = p.select(active, h, st.prev);
+    st.s = p.select(active, p.add(st.s, h), st.s);
+    st.x = V3::select(p, active, l.mul_add(p, h, st.x), st.x);
+    let done = p.or(p.gt(st.s, limit), p.gt(st.x.len2(p), esc2));
+    st.res = res;
+    st.active = p.and_not(active, done);
 }
 
 /// Surface normals of the hits in `live` at `q` (material `m`, scene distance `d` there):

@@ -25,6 +25,7 @@ mod lanes;
 mod march;
 mod prims;
 mod shade;
+mod stream;
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -32,8 +33,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use thiserror::Error;
 
 use self::eval::Tally;
-use self::lanes::V3;
-use self::shade::{Frame, MAX_WIDTH, camera_rays, packet_shape, shade};
+use self::lanes::MAX_WIDTH;
+use self::shade::{Frame, camera_rays, packet_shape, shade};
 use super::simd::count::{self, Counting};
 use super::simd::{self, Pack, PackKernel};
 use crate::plan3d::{Camera3d, Plan, PlanError, Shading};
@@ -292,6 +293,10 @@ fn render_tile<P: Pack>(
         let (i, j) = (i0 + lane % pw, j0 + lane / pw);
         (i < x1 && j < y1).then(|| ((j - y0) * (x1 - x0) + (i - x0)) as usize * 4)
     };
+    // The tile's packets are shaded together, so that their rays can share lanes.
+    let mut corners = Vec::new();
+    let mut dirs = Vec::new();
+    let mut lives = Vec::new();
     for j0 in (y0..y1).step_by(ph as usize) {
         for i0 in (x0..x1).step_by(pw as usize) {
             for (lane, v) in valid.iter_mut().enumerate().take(P::WIDTH) {
@@ -301,22 +306,25 @@ fn render_tile<P: Pack>(
                     0.0
                 };
             }
-            let live = p.gt(p.load(&valid), p.splat(0.5));
-            let dir: V3<P> = camera_rays(p, f, (i0, j0));
-            let c = shade(p, f, dir, live, tally);
-            p.store(c.x, &mut lanes[0]);
-            p.store(c.y, &mut lanes[1]);
-            p.store(c.z, &mut lanes[2]);
-            for lane in 0..P::WIDTH {
-                let Some(at) = pixel(i0, j0, lane as u32) else {
-                    continue;
-                };
-                let px = &mut buf[at..at + 4];
-                for (ch, v) in px.iter_mut().zip(&lanes) {
-                    *ch = to_byte(v[lane], rounding);
-                }
-                px[3] = 255;
+            corners.push((i0, j0));
+            lives.push(p.gt(p.load(&valid), p.splat(0.5)));
+            dirs.push(camera_rays(p, f, (i0, j0)));
+        }
+    }
+    let colours = shade(p, f, &dirs, &lives, tally);
+    for (&(i0, j0), c) in corners.iter().zip(&colours) {
+        p.store(c.x, &mut lanes[0]);
+        p.store(c.y, &mut lanes[1]);
+        p.store(c.z, &mut lanes[2]);
+        for lane in 0..P::WIDTH {
+            let Some(at) = pixel(i0, j0, lane as u32) else {
+                continue;
+            };
+            let px = &mut buf[at..at + 4];
+            for (ch, v) in px.iter_mut().zip(&lanes) {
+                *ch = to_byte(v[lane], rounding);
             }
+            px[3] = 255;
         }
     }
 }
@@ -324,6 +332,7 @@ fn render_tile<P: Pack>(
 /// The scene distance of `plan` at one point, on the scalar lanes (for the emitter's tests).
 #[cfg(test)]
 pub(crate) fn distance_at(plan: &Plan, q: glam::Vec3) -> f32 {
+    use self::lanes::V3;
     use crate::simd::Lanes;
     let p = craterfield_core::simd::Scalar;
     let s = constants::SceneConstants::new(plan);

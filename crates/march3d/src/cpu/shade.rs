@@ -6,17 +6,15 @@ use glam::Vec3;
 
 use super::constants::{SceneConstants, TerrainC};
 use super::eval::{Tally, map};
-use super::lanes::V3;
+use super::lanes::{MAX_WIDTH, V3};
 use super::march::{Hit, MarchC, march, normal, soft_shadow};
 use super::prims::ray_meets_sphere;
+use super::stream::{Packets, march_packets, shadow_packets};
 use crate::math;
 use crate::plan3d::{
     AoMode, Camera3d, Material, PaperShading, Plan, Shading, ShadowMode, Sphere, WorldShading,
 };
 use crate::simd::Pack;
-
-/// The widest packet any backend uses.
-pub(crate) const MAX_WIDTH: usize = 16;
 
 /// Everything one frame's kernel reads: compiled once, shared by all threads.
 #[derive(Clone, Debug)]
@@ -115,12 +113,24 @@ pub(crate) fn packet_shape<P: Pack>() -> (u32, u32) {
     (lanes / rows, rows)
 }
 
-/// Gamma-encoded colours of the camera rays `dir` (lanes of `live`).
+/// Gamma-encoded colours of the packets of camera rays `dir` (lanes of `live`).
 #[inline(always)]
-pub(crate) fn shade<P: Pack>(p: P, f: &Frame, dir: V3<P>, live: P::M, tally: &mut Tally) -> V3<P> {
+pub(crate) fn shade<P: Pack>(
+    p: P,
+    f: &Frame,
+    dir: &[V3<P>],
+    live: &[P::M],
+    tally: &mut Tally,
+) -> Vec<V3<P>> {
     match &f.shading {
         Shading::Paper(s) => paper(p, f, s, dir, live, tally),
-        Shading::World(w) => world(p, f, w, dir, live, tally),
+        Shading::World(w) => {
+            let mut out = Vec::with_capacity(dir.len());
+            for (&dir, &live) in dir.iter().zip(live) {
+                out.push(world(p, f, w, dir, live, tally));
+            }
+            out
+        }
     }
 }
 
@@ -145,107 +155,241 @@ fn encode3<P: Pack>(p: P, c: V3<P>, gamma: f32) -> V3<P> {
 }
 
 /// The paper's model: the primary hit and up to `bounces` mirror bounces, each weighted by
-/// the product of the reflectivities (times the reflection scale) before it.
+/// the product of the reflectivities (times the reflection scale) before it. The packets'
+/// marches and shadow rays go as streams (`super::stream`); the rest packet by packet.
 #[inline(always)]
 fn paper<P: Pack>(
     p: P,
     f: &Frame,
     s: &PaperShading,
-    primary: V3<P>,
-    live: P::M,
+    primary: &[V3<P>],
+    live: &[P::M],
     tally: &mut Tally,
-) -> V3<P> {
+) -> Vec<V3<P>> {
     let mc = &f.march;
-    let mut colour = V3::splat(p, Vec3::ZERO);
-    let mut weight = p.splat(1.0);
-    let mut o = V3::splat(p, f.camera.position);
-    let mut dir = primary;
-    let mut live = live;
+    let packets = primary.len();
+    let mut colour = vec![V3::splat(p, Vec3::ZERO); packets];
+    let mut weight = vec![p.splat(1.0); packets];
+    let mut o = vec![V3::splat(p, f.camera.position); packets];
+    let mut dir = primary.to_vec();
+    let mut live = live.to_vec();
     for bounce in 0..=s.bounces {
-        let h = march(p, &f.scene, mc, o, dir, live, tally);
-        live = p.and(live, h.hit);
-        if !p.any(live) {
+        let rays = Packets {
+            from: &o,
+            dir: &dir,
+            live: &live,
+        };
+        let hits = march_packets(p, &f.scene, mc, rays, tally);
+        for (l, h) in live.iter_mut().zip(&hits) {
+            *l = p.and(*l, h.hit);
+        }
+        if !any_lane(p, &live) {
             break;
         }
-        let q = dir.mul_add(p, h.t, o);
-        let n = normal(p, &f.scene, mc, (q, h.m, h.d), live, tally);
-        let (albedo, refl) = looks(p, f, h.m, live);
-        let local = paper_local(p, f, s, (q, n, dir), h.t, albedo, live, tally);
-        let add = V3::select(p, live, local.scale(p, weight), V3::splat(p, Vec3::ZERO));
-        colour = colour.add(p, add);
+        let mut q = Vec::with_capacity(packets);
+        let mut n = Vec::with_capacity(packets);
+        let mut albedo = Vec::with_capacity(packets);
+        let mut refl = Vec::with_capacity(packets);
+        let mut t = Vec::with_capacity(packets);
+        // Packets without a live lane are done: they only hold their places.
+        let nothing = V3::splat(p, Vec3::ZERO);
+        for k in 0..packets {
+            let h = &hits[k];
+            t.push(h.t);
+            if !p.any(live[k]) {
+                q.push(nothing);
+                n.push(nothing);
+                albedo.push(nothing);
+                refl.push(p.splat(0.0));
+                continue;
+            }
+            q.push(dir[k].mul_add(p, h.t, o[k]));
+            n.push(normal(p, &f.scene, mc, (q[k], h.m, h.d), live[k], tally));
+            let (a, r) = looks(p, f, h.m, live[k]);
+            albedo.push(a);
+            refl.push(r);
+        }
+        let seen = Packets {
+            from: &q,
+            dir: &dir,
+            live: &live,
+        };
+        let local = paper_local(p, f, s, seen, &n, &t, &albedo, tally);
+        for k in 0..packets {
+            if !p.any(live[k]) {
+                continue;
+            }
+            let add = V3::select(
+                p,
+                live[k],
+                local[k].scale(p, weight[k]),
+                V3::splat(p, Vec3::ZERO),
+            );
+            colour[k] = colour[k].add(p, add);
+        }
         if bounce == s.bounces {
             break;
         }
-        weight = p.mul(weight, p.mul(refl, p.splat(s.reflection_scale)));
-        live = p.and(live, p.gt(weight, p.splat(0.0)));
-        if !p.any(live) {
+        for k in 0..packets {
+            if !p.any(live[k]) {
+                continue;
+            }
+            weight[k] = p.mul(weight[k], p.mul(refl[k], p.splat(s.reflection_scale)));
+            live[k] = p.and(live[k], p.gt(weight[k], p.splat(0.0)));
+            if !p.any(live[k]) {
+                continue;
+            }
+            o[k] = n[k].mul_add(p, p.splat(mc.m.ray_offset), q[k]);
+            dir[k] = dir[k].reflect(p, n[k]);
+        }
+        if !any_lane(p, &live) {
             break;
         }
-        o = n.mul_add(p, p.splat(mc.m.ray_offset), q);
-        dir = dir.reflect(p, n);
     }
-    encode3(p, colour, s.gamma)
+    for c in &mut colour {
+        *c = encode3(p, *c, s.gamma);
+    }
+    colour
 }
 
-/// The local colour of paper-shaded hits (before reflections), fog included.
+/// Whether any lane of any packet is set.
+#[inline(always)]
+fn any_lane<P: Pack>(p: P, masks: &[P::M]) -> bool {
+    let mut any = false;
+    for &m in masks {
+        any |= p.any(m);
+    }
+    any
+}
+
+/// One light's terms at paper-shaded hits.
+struct LightTerms<P: Pack> {
+    /// Unit direction to the light.
+    l: V3<P>,
+    intensity: P::F,
+    diff: P::F,
+    spec: P::F,
+    /// Lanes with diffuse or specular light (the others gain nothing from a shadow ray).
+    lit: P::M,
+}
+
+impl<P: Pack> LightTerms<P> {
+    /// The terms of a packet without a hit: no light.
+    #[inline(always)]
+    fn none(p: P) -> Self {
+        let zero = p.splat(0.0);
+        LightTerms {
+            l: V3::splat(p, Vec3::ZERO),
+            intensity: zero,
+            diff: zero,
+            spec: zero,
+            lit: p.none(),
+        }
+    }
+}
+
+#[inline(always)]
+fn light_terms<P: Pack>(
+    p: P,
+    s: &PaperShading,
+    light: &crate::plan3d::PointLight,
+    (q, n, dir): (V3<P>, V3<P>, V3<P>),
+    live: P::M,
+) -> LightTerms<P> {
+    let zero = p.splat(0.0);
+    let ndir = n.dot(p, dir);
+    let to = V3::splat(p, light.position).sub(p, q);
+    let r = to.len(p);
+    let inv = p.div(p.splat(1.0), r);
+    let l = to.scale(p, inv);
+    let intensity = p.mul(p.splat(light.emission), inv);
+    let nl = l.dot(p, n);
+    let diff = p.max(nl, zero);
+    // dot(reflect(-l, n), -dir) = dot(l, dir) - 2 dot(n, l) dot(n, dir).
+    let rv = p.fnma(p.mul(p.splat(2.0), nl), ndir, l.dot(p, dir));
+    let rv = p.max(rv, zero);
+    let spec = math::pow(p, rv, p.splat(s.shininess));
+    let lit = p.and(live, p.or(p.gt(diff, zero), p.gt(rv, zero)));
+    LightTerms {
+        l,
+        intensity,
+        diff,
+        spec,
+        lit,
+    }
+}
+
+/// The local colours of paper-shaded hits (before reflections), fog included, of every
+/// packet: `seen` are the hit points and the directions they were seen along, `n` their
+/// normals, `t` their distances.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn paper_local<P: Pack>(
     p: P,
     f: &Frame,
     s: &PaperShading,
-    (q, n, dir): (V3<P>, V3<P>, V3<P>),
-    t: P::F,
-    albedo: V3<P>,
-    live: P::M,
+    seen: Packets<'_, P>,
+    n: &[V3<P>],
+    t: &[P::F],
+    albedo: &[V3<P>],
     tally: &mut Tally,
-) -> V3<P> {
+) -> Vec<V3<P>> {
+    let Packets { from: q, dir, live } = seen;
+    let packets = q.len();
     let zero = p.splat(0.0);
-    let (mut diffuse, mut specular) = (zero, zero);
-    let ndir = n.dot(p, dir);
+    let (mut diffuse, mut specular) = (vec![zero; packets], vec![zero; packets]);
     for light in &s.lights {
-        let to = V3::splat(p, light.position).sub(p, q);
-        let r = to.len(p);
-        let inv = p.div(p.splat(1.0), r);
-        let l = to.scale(p, inv);
-        let intensity = p.mul(p.splat(light.emission), inv);
-        let nl = l.dot(p, n);
-        let diff = p.max(nl, zero);
-        // dot(reflect(-l, n), -dir) = dot(l, dir) - 2 dot(n, l) dot(n, dir).
-        let rv = p.fnma(p.mul(p.splat(2.0), nl), ndir, l.dot(p, dir));
-        let rv = p.max(rv, zero);
-        let spec = math::pow(p, rv, p.splat(s.shininess));
-        // Lanes with neither diffuse nor specular light gain nothing from the shadow ray.
-        let lit = p.and(live, p.or(p.gt(diff, zero), p.gt(rv, zero)));
+        let mut terms: Vec<LightTerms<P>> = Vec::with_capacity(packets);
+        for k in 0..packets {
+            terms.push(if p.any(live[k]) {
+                light_terms(p, s, light, (q[k], n[k], dir[k]), live[k])
+            } else {
+                LightTerms::none(p)
+            });
+        }
         let shadow = match s.shadow_k {
-            Some(k) if p.any(lit) => soft_shadow(
-                p,
-                &f.scene,
-                &f.march,
-                (q, n, l),
+            Some(k) => {
+                let l: Vec<V3<P>> = terms.iter().map(|t| t.l).collect();
+                let lit: Vec<P::M> = terms.iter().map(|t| t.lit).collect();
                 // As in the reference renderer, the light ray runs until it escapes, past
                 // the light.
-                p.splat(f32::INFINITY),
-                k,
-                f.march.m.max_steps,
-                lit,
-                tally,
-            ),
-            _ => p.splat(1.0),
+                let rays = Packets {
+                    from: q,
+                    dir: &l,
+                    live: &lit,
+                };
+                let limit = (f32::INFINITY, k, f.march.m.max_steps);
+                shadow_packets(p, &f.scene, &f.march, rays, n, limit, tally)
+            }
+            None => vec![p.splat(1.0); packets],
         };
-        let si = p.mul(shadow, intensity);
-        diffuse = p.fma(diff, si, diffuse);
-        specular = p.fma(spec, si, specular);
+        for (k, t) in terms.iter().enumerate() {
+            if !p.any(live[k]) {
+                continue;
+            }
+            let si = p.mul(shadow[k], t.intensity);
+            diffuse[k] = p.fma(t.diff, si, diffuse[k]);
+            specular[k] = p.fma(t.spec, si, specular[k]);
+        }
     }
-    let fog = math::exp(p, p.neg(p.mul(p.splat(s.fog), p.mul(p.mul(t, t), t))));
-    let base = p.add(p.splat(s.ambient), diffuse);
-    let spec = p.mul(p.splat(s.specular), specular);
-    V3 {
-        x: p.fma(albedo.x, base, spec),
-        y: p.fma(albedo.y, base, spec),
-        z: p.fma(albedo.z, base, spec),
+    let mut out = Vec::with_capacity(packets);
+    for k in 0..packets {
+        if !p.any(live[k]) {
+            out.push(V3::splat(p, Vec3::ZERO));
+            continue;
+        }
+        let tk = t[k];
+        let fog = math::exp(p, p.neg(p.mul(p.splat(s.fog), p.mul(p.mul(tk, tk), tk))));
+        let base = p.add(p.splat(s.ambient), diffuse[k]);
+        let spec = p.mul(p.splat(s.specular), specular[k]);
+        let c = V3 {
+            x: p.fma(albedo[k].x, base, spec),
+            y: p.fma(albedo[k].y, base, spec),
+            z: p.fma(albedo[k].z, base, spec),
+        };
+        out.push(c.scale(p, fog));
     }
-    .scale(p, fog)
+    out
 }
 
 /// `a + (b - a) t` for constant colours.
