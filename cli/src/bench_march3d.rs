@@ -31,6 +31,7 @@ use serde::Serialize;
 
 use crate::bench_reference3d::{self as reference, Fidelity, RefRow};
 use crate::march3d_cmd::{parse_size, plan_for};
+use crate::tails::Tails;
 
 /// Options of `bench march3d`.
 #[derive(clap::Args, Debug, Clone)]
@@ -38,8 +39,9 @@ pub(crate) struct Options {
     /// Print one JSON object instead of tables.
     #[arg(long)]
     pub json: bool,
-    /// Timed frames per CPU configuration (the median is reported).
-    #[arg(long, default_value_t = 3)]
+    /// Timed frames per CPU configuration and reference run (median, p95, p99 and max are
+    /// reported; the scalar path is timed once).
+    #[arg(long, default_value_t = 9)]
     pub frames: u32,
     /// The clock in GHz used for flops per cycle (default: the nominal frequency the
     /// operating system reports).
@@ -67,6 +69,9 @@ pub(crate) struct Options {
     /// Skip the GPU frames of the builtin scenes.
     #[arg(long)]
     pub no_gpu_frames: bool,
+    /// Timed GPU frames of each builtin scene, after the first.
+    #[arg(long, default_value_t = 5)]
+    pub gpu_frames: u32,
 }
 
 /// One builtin scene's GPU frames.
@@ -76,8 +81,9 @@ struct GpuFrame {
     nodes: usize,
     /// The first frame, pipeline creation included (wall clock).
     first_ms: f64,
-    /// The next frame (GPU timestamps where the adapter has them).
-    ms: f64,
+    /// The frames after it (GPU timestamps where the adapter has them).
+    ms: Tails,
+    frames: u32,
 }
 
 #[derive(Serialize)]
@@ -86,7 +92,8 @@ struct Row {
     #[serde(rename = "impl")]
     implementation: String,
     threads: usize,
-    s_per_frame: f64,
+    seconds: Tails,
+    frames: u32,
     gflop: f64,
     flops_per_cycle: f64,
     speedup_vs_scalar: Option<f64>,
@@ -128,11 +135,6 @@ struct VisualDiff {
     flip: f64,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-}
-
 /// The nominal clock from `/proc/cpuinfo`, in GHz.
 fn os_clock_ghz() -> Option<f64> {
     let text = std::fs::read_to_string("/proc/cpuinfo").ok()?;
@@ -148,7 +150,7 @@ fn time_cpu(
     isa: Backend,
     threads: usize,
     frames: u32,
-) -> Result<f64, String> {
+) -> Result<Tails, String> {
     let opts = TraceOptions {
         threads,
         backend: Some(isa),
@@ -160,7 +162,7 @@ fn time_cpu(
         cpu::render(plan, cam, size.0, size.1, &opts).map_err(|e| e.to_string())?;
         s.push(t.elapsed().as_secs_f64());
     }
-    Ok(median(s))
+    Ok(Tails::of(s))
 }
 
 /// Our picture of each paper scene (widest instruction set, all threads) against the
@@ -220,16 +222,26 @@ fn gpu_frames(o: &Options, gpu: &mut Option<Gpu>) -> Result<Vec<GpuFrame>, Strin
             first => first.map_err(|e| e.to_string())?,
         };
         let first_ms = t.elapsed().as_secs_f64() * 1e3;
-        let (_, ms) = g
-            .marcher
-            .render_timed(&plan, &cam, size.0, size.1)
-            .map_err(|e| e.to_string())?;
-        eprintln!("  {name} on the GPU at {}: {ms:.1} ms", o.gpu_size);
+        let frames = o.gpu_frames.max(1);
+        let mut times = Vec::new();
+        for _ in 0..frames {
+            let (_, ms) = g
+                .marcher
+                .render_timed(&plan, &cam, size.0, size.1)
+                .map_err(|e| e.to_string())?;
+            times.push(ms);
+        }
+        let ms = Tails::of(times);
+        eprintln!(
+            "  {name} on the GPU at {}: median {:.1} ms",
+            o.gpu_size, ms.median
+        );
         out.push(GpuFrame {
             scene: name.to_string(),
             nodes: plan.nodes.len(),
             first_ms,
             ms,
+            frames,
         });
     }
     Ok(out)
@@ -262,7 +274,8 @@ fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, Str
         for isa in isas {
             for (k, &t) in threads.iter().enumerate() {
                 let frames = if isa == Backend::Scalar { 1 } else { o.frames };
-                let s = time_cpu(&plan, &cam, size, isa, t, frames)?;
+                let seconds = time_cpu(&plan, &cam, size, isa, t, frames)?;
+                let s = seconds.median;
                 if isa == Backend::Scalar {
                     scalar_s.push(s);
                 }
@@ -271,7 +284,8 @@ fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, Str
                     scene: name.to_string(),
                     implementation: isa.name().to_string(),
                     threads: t,
-                    s_per_frame: s,
+                    seconds,
+                    frames,
                     gflop,
                     flops_per_cycle: gflop * 1e9 / (s * ghz * 1e9 * t as f64),
                     speedup_vs_scalar: speedup,
@@ -438,16 +452,32 @@ fn print_tables(r: &Report, o: &Options) {
         o.size, r.clock_ghz, r.clock_source
     );
     println!(
-        "{:<11} {:<28} {:>7} {:>9} {:>8} {:>12} {:>10} {:>13}",
-        "scene", "impl", "threads", "s/frame", "GFLOP", "flops/cycle", "vs scalar", "vs reference"
+        "{:<11} {:<24} {:>7} {:>8} {:>8} {:>8} {:>8} {:>7} {:>11} {:>9} {:>12}",
+        "scene",
+        "impl",
+        "threads",
+        "median s",
+        "p95",
+        "p99",
+        "max",
+        "GFLOP",
+        "flops/cycle",
+        "vs scalar",
+        "vs reference"
     );
+    let times = |t: &Tails| {
+        format!(
+            "{:>8.3} {:>8.3} {:>8.3} {:>8.3}",
+            t.median, t.p95, t.p99, t.max
+        )
+    };
     for row in &r.reference {
         println!(
-            "{:<11} {:<28} {:>7} {:>9.3} {:>8} {:>12} {:>10} {:>13}",
+            "{:<11} {:<24} {:>7} {} {:>7} {:>11} {:>9} {:>12}",
             row.scene,
             format!("ref {}", row.binary),
             row.threads,
-            row.s_per_frame,
+            times(&row.seconds),
             "-",
             "-",
             "-",
@@ -457,14 +487,14 @@ fn print_tables(r: &Report, o: &Options) {
     for row in &r.rows {
         let vs = reference::best(&r.reference, &row.scene, row.threads)
             .map_or("-".to_string(), |b| {
-                format!("{:.2}x", b.s_per_frame / row.s_per_frame)
+                format!("{:.2}x", b.seconds.median / row.seconds.median)
             });
         println!(
-            "{:<11} {:<28} {:>7} {:>9.3} {:>8.2} {:>12.3} {:>10} {:>13}",
+            "{:<11} {:<24} {:>7} {} {:>7.2} {:>11.3} {:>9} {:>12}",
             row.scene,
             row.implementation,
             row.threads,
-            row.s_per_frame,
+            times(&row.seconds),
             row.gflop,
             row.flops_per_cycle,
             row.speedup_vs_scalar
@@ -472,18 +502,22 @@ fn print_tables(r: &Report, o: &Options) {
             vs
         );
     }
+    println!(
+        "({} timed frames per row, the scalar path 1; percentiles nearest-rank, so with fewer than 20 frames p95 and p99 are the max)",
+        o.frames.max(1)
+    );
     if r.reference.is_empty() {
         println!("(no reference binary given: --reference BIN times one in the same run)");
     } else {
         println!(
-            "reference times are whole processes (scene load, render, PNG write); vs reference = the fastest reference binary at the same thread count over ours"
+            "reference times are whole processes (scene load, render, PNG write); vs reference = the fastest reference binary's median at the same thread count over ours"
         );
     }
-    for row in &r.reference {
+    for row in r.reference.iter().filter(|row| row.threads == 1) {
         if let Some(f) = row.flip_vs_vendored {
             println!(
-                "ref {} {} x{}: its picture against the vendored one: FLIP {f:.4}",
-                row.binary, row.scene, row.threads
+                "ref {} {}: its picture against the vendored one: FLIP {f:.4}",
+                row.binary, row.scene
             );
         }
     }
@@ -562,14 +596,17 @@ fn print_tables(r: &Report, o: &Options) {
             r.gpu_size, r.adapter
         );
         println!(
-            "{:<11} {:>6} {:>15} {:>10}",
-            "scene", "nodes", "first frame ms", "frame ms"
+            "{:<11} {:>6} {:>15} {:>10} {:>9} {:>9} {:>9}",
+            "scene", "nodes", "first frame ms", "median ms", "p95", "p99", "max"
         );
         for g in &r.gpu_frames {
             println!(
-                "{:<11} {:>6} {:>15.1} {:>10.1}",
-                g.scene, g.nodes, g.first_ms, g.ms
+                "{:<11} {:>6} {:>15.1} {:>10.1} {:>9.1} {:>9.1} {:>9.1}",
+                g.scene, g.nodes, g.first_ms, g.ms.median, g.ms.p95, g.ms.p99, g.ms.max
             );
+        }
+        if let Some(g) = r.gpu_frames.first() {
+            println!("({} timed frames per scene after the first)", g.frames);
         }
     }
 }

@@ -16,13 +16,17 @@ use craterfield::visdiff::{DiffOptions, compare, load_png};
 use image::RgbaImage;
 use serde::Serialize;
 
+use crate::tails::Tails;
+
 /// One reference binary's time on one scene at one thread count.
 #[derive(Serialize, Clone)]
 pub(crate) struct RefRow {
     pub scene: String,
     pub binary: String,
     pub threads: usize,
-    pub s_per_frame: f64,
+    /// Seconds per run, over `frames` runs.
+    pub seconds: Tails,
+    pub frames: u32,
     /// FLIP of its picture against the vendored reference picture (another build of the
     /// same program may round differently).
     pub flip_vs_vendored: Option<f64>,
@@ -38,11 +42,6 @@ pub(crate) struct Fidelity {
     pub differing_fraction: f64,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-}
-
 /// A short name for a binary: the folder of its checkout (the binary sits in `build/`).
 pub(crate) fn label(bin: &Path) -> String {
     bin.parent()
@@ -51,13 +50,14 @@ pub(crate) fn label(bin: &Path) -> String {
         .map_or_else(|| bin.display().to_string(), |n| n.to_string_lossy().into())
 }
 
-/// Runs `bin` on `scene` with `threads` OpenMP threads, `frames` times; the median seconds.
+/// Runs `bin` on `scene` with `threads` OpenMP threads, `frames` times; the seconds' median
+/// and tails.
 pub(crate) fn time_reference(
     bin: &Path,
     scene: &str,
     threads: usize,
     frames: u32,
-) -> Result<f64, String> {
+) -> Result<Tails, String> {
     let dir = bin
         .parent()
         .ok_or_else(|| format!("{}: no folder", bin.display()))?;
@@ -79,7 +79,7 @@ pub(crate) fn time_reference(
             return Err(format!("{} {scene}: {status}", bin.display()));
         }
     }
-    Ok(median(times))
+    Ok(Tails::of(times))
 }
 
 /// The picture `bin` wrote for `scene` on its last run.
@@ -121,31 +121,39 @@ pub(crate) fn reference_rows(
     all_threads: usize,
     frames: u32,
 ) -> Result<Vec<RefRow>, String> {
+    let mut threads = vec![1];
+    if all_threads > 1 {
+        threads.push(all_threads);
+    }
     let mut rows = Vec::new();
     for bin in bins {
         for scene in ["scene0", "mandelbulb"] {
-            let mut threads = vec![1];
-            if all_threads > 1 {
-                threads.push(all_threads);
+            let mut timed = Vec::new();
+            for &t in &threads {
+                let seconds = time_reference(bin, scene, t, frames)?;
+                eprintln!(
+                    "  reference {} {scene} x{t}: {:.3} s",
+                    label(bin),
+                    seconds.median
+                );
+                timed.push((t, seconds));
             }
-            for t in threads {
-                let s = time_reference(bin, scene, t, frames)?;
-                eprintln!("  reference {} {scene} x{t}: {s:.3} s", label(bin));
-                let vendored = pictures.join(format!("{scene}.png"));
-                let flip_vs_vendored = match load_png(&reference_output(bin, scene)) {
-                    Ok(img) if vendored.exists() => {
-                        Some(fidelity(scene, &img, ("vendored", &vendored))?.flip)
-                    }
-                    _ => None,
-                };
-                rows.push(RefRow {
-                    scene: scene.to_string(),
-                    binary: label(bin),
-                    threads: t,
-                    s_per_frame: s,
-                    flip_vs_vendored,
-                });
-            }
+            // Every run writes the same picture: compared once, after the last.
+            let vendored = pictures.join(format!("{scene}.png"));
+            let flip_vs_vendored = match load_png(&reference_output(bin, scene)) {
+                Ok(img) if vendored.exists() => {
+                    Some(fidelity(scene, &img, ("vendored", &vendored))?.flip)
+                }
+                _ => None,
+            };
+            rows.extend(timed.into_iter().map(|(threads, seconds)| RefRow {
+                scene: scene.to_string(),
+                binary: label(bin),
+                threads,
+                seconds,
+                frames: frames.max(1),
+                flip_vs_vendored,
+            }));
         }
     }
     Ok(rows)
@@ -155,5 +163,5 @@ pub(crate) fn reference_rows(
 pub(crate) fn best<'a>(rows: &'a [RefRow], scene: &str, threads: usize) -> Option<&'a RefRow> {
     rows.iter()
         .filter(|r| r.scene == scene && r.threads == threads)
-        .min_by(|a, b| a.s_per_frame.total_cmp(&b.s_per_frame))
+        .min_by(|a, b| a.seconds.median.total_cmp(&b.seconds.median))
 }
