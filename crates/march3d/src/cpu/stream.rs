@@ -5,8 +5,10 @@
 //! packet that graze a fractal take hundreds of steps more than their neighbours, and the
 //! other lanes wait (on the Mandelbulb, fewer than half the lanes of a 16-wide packet did
 //! useful work). Here a lane whose ray hit, escaped or ran out of steps takes the next ray
-//! of the queue at once. Each step is [`plain_step`] or [`shadow_step`], whose lanes do not
-//! depend on each other, so every ray ends with the bits the packet march gives it.
+//! of the queue, as soon as a quarter of the packet is free (a refill goes through memory;
+//! between refills the lanes stay in registers). Each step is [`plain_step`] or
+//! [`shadow_step`], whose lanes do not depend on each other, so every ray ends with the
+//! bits the packet march gives it.
 
 use super::constants::SceneConstants;
 use super::eval::{SKY_I, Tally};
