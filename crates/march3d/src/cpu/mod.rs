@@ -26,6 +26,8 @@ mod march;
 mod prims;
 mod shade;
 mod stream;
+#[cfg(test)]
+mod tests;
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -1,0 +1,154 @@
+//! Tests of the tracer's internals: the ray streams against the packet marches, ray by ray,
+//! on every backend.
+
+use super::eval::Tally;
+use super::lanes::{MAX_WIDTH, V3};
+use super::march::{march, normal, soft_shadow};
+use super::shade::{Frame, camera_rays, packet_shape};
+use super::stream::{Packets, march_packets, shadow_packets};
+use crate::compile::{CompileOptions, emit};
+use crate::scene::Scene;
+use crate::simd::{Pack, PackKernel};
+use craterfield_core::backend::Backend;
+use glam::Vec3;
+
+/// Streams against packet marches over one frame: the rays' mismatches (`t`, hit,
+/// material or distance of a ray's march; a shadow's value), bit for bit.
+#[derive(Clone)]
+struct Compare<'a> {
+    frame: &'a Frame,
+}
+
+impl PackKernel for Compare<'_> {
+    type Output = (usize, usize);
+
+    fn run<P: Pack>(self, p: P) -> (usize, usize) {
+        let f = self.frame;
+        let (pw, ph) = packet_shape::<P>();
+        let mut dirs = Vec::new();
+        for j0 in (0..f.height).step_by(ph as usize) {
+            for i0 in (0..f.width).step_by(pw as usize) {
+                dirs.push(camera_rays(p, f, (i0, j0)));
+            }
+        }
+        let every = p.gt(p.splat(1.0), p.splat(0.0));
+        // Every third packet without its first lanes, so that some rays are not live.
+        let live: Vec<P::M> = (0..dirs.len())
+            .map(|k| {
+                let mut v = [1.0f32; MAX_WIDTH];
+                if k % 3 == 0 {
+                    v[..P::WIDTH / 2].fill(0.0);
+                }
+                p.and(every, p.gt(p.load(&v), p.splat(0.5)))
+            })
+            .collect();
+        let o = vec![V3::splat(p, f.camera.position); dirs.len()];
+        let (s, mc) = (&f.scene, &f.march);
+        let mut tally = Tally::default();
+        let rays = Packets {
+            from: &o,
+            dir: &dirs,
+            live: &live,
+        };
+        let streamed = march_packets(p, s, mc, rays, &mut tally);
+        let bits = |v: P::F| {
+            let mut a = [0.0f32; MAX_WIDTH];
+            p.store(v, &mut a);
+            a.map(f32::to_bits)
+        };
+        let mut march_bad = 0;
+        let (mut pos, mut n, mut hits) = (Vec::new(), Vec::new(), Vec::new());
+        for k in 0..dirs.len() {
+            let h = march(p, s, mc, o[k], dirs[k], live[k], &mut tally);
+            let g = &streamed[k];
+            let lanes = p.bitmask(live[k]);
+            let hit = p.bitmask(h.hit);
+            let (mut hm, mut gm) = ([0i32; MAX_WIDTH], [0i32; MAX_WIDTH]);
+            p.store_i(h.m, &mut hm);
+            p.store_i(g.m, &mut gm);
+            for lane in (0..P::WIDTH).filter(|l| lanes & (1 << l) != 0) {
+                let same_hit = (hit ^ p.bitmask(g.hit)) & (1 << lane) == 0;
+                let same = same_hit
+                    && bits(h.t)[lane] == bits(g.t)[lane]
+                    && (hit & (1 << lane) == 0
+                        || (hm[lane] == gm[lane] && bits(h.d)[lane] == bits(g.d)[lane]));
+                march_bad += usize::from(!same);
+            }
+            let q = dirs[k].mul_add(p, h.t, o[k]);
+            n.push(normal(p, s, mc, (q, h.m, h.d), h.hit, &mut tally));
+            pos.push(q);
+            hits.push(h.hit);
+        }
+        let l = V3::splat(p, Vec3::new(0.3, 0.9, -0.2).normalize());
+        let ls = vec![l; dirs.len()];
+        let limit = (f32::INFINITY, 16.0, mc.m.max_steps);
+        let rays = Packets {
+            from: &pos,
+            dir: &ls,
+            live: &hits,
+        };
+        let streamed = shadow_packets(p, s, mc, rays, &n, limit, &mut tally);
+        let mut shadow_bad = 0;
+        for k in 0..dirs.len() {
+            let (inf, sk, steps) = limit;
+            let packet = (pos[k], n[k], l);
+            let r = soft_shadow(
+                p,
+                s,
+                mc,
+                packet,
+                p.splat(inf),
+                sk,
+                steps,
+                hits[k],
+                &mut tally,
+            );
+            let (a, b) = (bits(r), bits(streamed[k]));
+            shadow_bad += (0..P::WIDTH).filter(|&lane| a[lane] != b[lane]).count();
+        }
+        (march_bad, shadow_bad)
+    }
+}
+
+#[test]
+fn streams_give_every_ray_the_bits_of_its_packet_march() {
+    for (name, steps) in [
+        ("scene0", None),
+        ("mandelbulb", None),
+        ("mandelbulb", Some(40)),
+    ] {
+        let scene = Scene::builtin(name).unwrap();
+        let camera = scene.camera.camera().unwrap();
+        let (w, h) = (37, 23);
+        let opts = CompileOptions {
+            aspect: w as f32 / h as f32,
+            height: h,
+            ..CompileOptions::paper()
+        };
+        let mut plan = emit(&scene, &camera, &opts).unwrap();
+        if let Some(steps) = steps {
+            // Rays that run out of steps leave their lanes too.
+            plan.march.max_steps = steps;
+        }
+        let frame = Frame::new(&plan, &camera, w, h);
+        let k = Compare { frame: &frame };
+        let mut runs = vec![("counting", crate::simd::count::Counting.call(k.clone()))];
+        for b in [
+            Backend::Scalar,
+            Backend::Avx2,
+            Backend::Avx512,
+            Backend::Neon,
+        ] {
+            if b.is_available() {
+                runs.push((b.name(), crate::simd::run(b, k.clone()).unwrap()));
+            }
+        }
+        for (backend, (march_bad, shadow_bad)) in runs {
+            assert_eq!(
+                (march_bad, shadow_bad),
+                (0, 0),
+                "{name} (max steps {steps:?}) on {backend}: rays whose march or shadow differ"
+            );
+        }
+    }
+}
