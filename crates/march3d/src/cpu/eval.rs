@@ -3,7 +3,7 @@
 //! and row repetition evaluated over lanes, with material tracking by masks.
 
 use super::constants::{NodeC, PrimC, SceneConstants, ShapeC};
-use super::lanes::V3;
+use super::lanes::{MAX_WIDTH, V3};
 use super::prims::{mandelbulb, prim_distance};
 use crate::noise::noise3;
 use crate::plan3d::{EARLY_OUT_MARGIN, SKY};
@@ -69,28 +69,25 @@ pub(crate) fn map_split<P: Pack>(
 /// The lanes of one [`map`] call, in memory (a kernel is generic over the backend, so its
 /// inputs cannot be one backend's registers).
 struct MapIo {
-    x: [f32; MAP_LANES],
-    y: [f32; MAP_LANES],
-    z: [f32; MAP_LANES],
-    active: [f32; MAP_LANES],
-    d: [f32; MAP_LANES],
-    m: [i32; MAP_LANES],
-    rest: [f32; MAP_LANES],
+    x: [f32; MAX_WIDTH],
+    y: [f32; MAX_WIDTH],
+    z: [f32; MAX_WIDTH],
+    active: [f32; MAX_WIDTH],
+    d: [f32; MAX_WIDTH],
+    m: [i32; MAX_WIDTH],
+    rest: [f32; MAX_WIDTH],
 }
-
-/// The widest packet any backend has.
-const MAP_LANES: usize = 16;
 
 impl Default for MapIo {
     fn default() -> MapIo {
         MapIo {
-            x: [0.0; MAP_LANES],
-            y: [0.0; MAP_LANES],
-            z: [0.0; MAP_LANES],
-            active: [0.0; MAP_LANES],
-            d: [0.0; MAP_LANES],
-            m: [0; MAP_LANES],
-            rest: [0.0; MAP_LANES],
+            x: [0.0; MAX_WIDTH],
+            y: [0.0; MAX_WIDTH],
+            z: [0.0; MAX_WIDTH],
+            active: [0.0; MAX_WIDTH],
+            d: [0.0; MAX_WIDTH],
+            m: [0; MAX_WIDTH],
+            rest: [0.0; MAX_WIDTH],
         }
     }
 }

@@ -5,8 +5,8 @@ use glam::Vec3;
 
 use crate::simd::Pack;
 
-/// The widest packet any backend uses.
-pub(crate) const MAX_WIDTH: usize = 16;
+/// The widest packet any backend uses (a [`crate::simd::Pair`] of 16-lane registers).
+pub(crate) const MAX_WIDTH: usize = 32;
 
 /// `P::WIDTH` 3D vectors, one per lane.
 pub(crate) struct V3<P: Pack> {

@@ -14,7 +14,7 @@ use super::constants::SceneConstants;
 use super::eval::{SKY_I, Tally};
 use super::lanes::{MAX_WIDTH, V3};
 use super::march::{Hit, MarchC, PlainState, ShadowState, march, plain_step, shadow_step};
-use crate::simd::Pack;
+use crate::simd::{Pack, Pair};
 
 /// The per-lane values a stream keeps in memory between steps (a backend's registers
 /// cannot be indexed by lane).
@@ -176,7 +176,11 @@ pub(crate) fn march_packets<P: Pack>(
         return out;
     }
     let rays = PlainRays::new(p, o, dir, live);
-    let done = rays.march(p, s, mc, tally);
+    let done = if P::STREAM_PAIRS && s.long_chains {
+        rays.march(Pair(p), s, mc, tally)
+    } else {
+        rays.march(p, s, mc, tally)
+    };
     let hit = gather_mask(p, &done.hit);
     let t = gather(p, &done.t);
     let d = gather(p, &done.d);
@@ -358,15 +362,12 @@ pub(crate) fn shadow_packets<P: Pack>(
     let live = spread_mask(p, live);
     let mut res = vec![1.0f32; live.len()];
     if max_steps > 0 {
-        shadow_stream(
-            p,
-            s,
-            mc,
-            (&init, &dirs, &live),
-            (limit, k, max_steps),
-            &mut res,
-            tally,
-        );
+        let (rays, params) = ((&init, &dirs, &live[..]), (limit, k, max_steps));
+        if P::STREAM_PAIRS && s.long_chains {
+            shadow_stream(Pair(p), s, mc, rays, params, &mut res, tally);
+        } else {
+            shadow_stream(p, s, mc, rays, params, &mut res, tally);
+        }
     }
     gather(p, &res)
 }

@@ -9,6 +9,8 @@ use craterfield_core::simd::Avx2;
 use super::{Pack, PackKernel};
 
 impl Pack for Avx2 {
+    const STREAM_PAIRS: bool = true;
+
     #[inline]
     fn call<K: PackKernel>(self, k: K) -> K::Output {
         // Out of line: a kernel is compiled once per call type, not into each caller.
@@ -29,6 +31,16 @@ impl Pack for Avx2 {
     fn fnma(self, a: __m256, b: __m256, c: __m256) -> __m256 {
         // SAFETY: FMA is available (detected with AVX2 before the token exists). `vfnmadd` is `-(a * b) + c`.
         unsafe { _mm256_fnmadd_ps(a, b, c) }
+    }
+    #[inline(always)]
+    fn rsqrt(self, a: __m256) -> __m256 {
+        // SAFETY: AVX and FMA are available (the token exists). `vrsqrtps` is within
+        // 1.5 * 2^-12; one Newton step `y (3/2 - a/2 y^2)` squares that error.
+        unsafe {
+            let y = _mm256_rsqrt_ps(a);
+            let half_a_y = _mm256_mul_ps(_mm256_mul_ps(a, _mm256_set1_ps(0.5)), y);
+            _mm256_mul_ps(y, _mm256_fnmadd_ps(half_a_y, y, _mm256_set1_ps(1.5)))
+        }
     }
     #[inline(always)]
     fn round(self, a: __m256) -> __m256 {

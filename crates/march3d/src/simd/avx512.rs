@@ -9,6 +9,8 @@ use craterfield_core::simd::Avx512;
 use super::{Pack, PackKernel};
 
 impl Pack for Avx512 {
+    const STREAM_PAIRS: bool = true;
+
     #[inline]
     fn call<K: PackKernel>(self, k: K) -> K::Output {
         // Out of line: a kernel is compiled once per call type, not into each caller.
@@ -29,6 +31,16 @@ impl Pack for Avx512 {
     fn fnma(self, a: __m512, b: __m512, c: __m512) -> __m512 {
         // SAFETY: AVX-512F is available. `vfnmadd` is `-(a * b) + c`.
         unsafe { _mm512_fnmadd_ps(a, b, c) }
+    }
+    #[inline(always)]
+    fn rsqrt(self, a: __m512) -> __m512 {
+        // SAFETY: AVX-512F is available; `vrsqrt14ps` is AVX-512F. Its estimate is within
+        // 2^-14; one Newton step `y (3/2 - a/2 y^2)` squares that error.
+        unsafe {
+            let y = _mm512_rsqrt14_ps(a);
+            let half_a_y = _mm512_mul_ps(_mm512_mul_ps(a, _mm512_set1_ps(0.5)), y);
+            _mm512_mul_ps(y, _mm512_fnmadd_ps(half_a_y, y, _mm512_set1_ps(1.5)))
+        }
     }
     #[inline(always)]
     fn round(self, a: __m512) -> __m512 {

@@ -190,6 +190,12 @@ impl Pack for Counting {
         Scalar.fnma(a, b, c)
     }
     #[inline(always)]
+    fn rsqrt(self, a: f32) -> f32 {
+        // One operation, as the square root it replaces.
+        count(1);
+        Scalar.rsqrt(a)
+    }
+    #[inline(always)]
     fn shl_n<const N: i32>(self, a: i32) -> i32 {
         Scalar.shl_n::<N>(a)
     }

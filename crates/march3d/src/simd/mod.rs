@@ -18,7 +18,10 @@
 use craterfield_core::backend::{Backend, BackendError};
 pub use craterfield_core::simd::{Lanes, Scalar};
 
+pub(crate) use pair::Pair;
+
 pub(crate) mod count;
+mod pair;
 mod scalar;
 #[cfg(test)]
 mod tests;
@@ -54,12 +57,22 @@ pub trait PackKernel {
 /// implementations live in this crate alone, so the deterministic field, which depends on
 /// `craterfield-core` and not on this crate, cannot name a fused lane.
 pub trait Pack: Lanes {
+    /// Whether the ray streams march two of this backend's registers per step ([`Pair`])
+    /// in scenes whose distance is a long chain of dependent operations (the Mandelbulb's),
+    /// where the operations' latency, not their throughput, bounds a march: true on the
+    /// x86_64 vector backends, where it was measured.
+    const STREAM_PAIRS: bool = false;
     /// Runs `k` compiled for this backend's instruction set.
     fn call<K: PackKernel>(self, k: K) -> K::Output;
     /// `a * b + c`, fused where the instruction set has it.
     fn fma(self, a: Self::F, b: Self::F, c: Self::F) -> Self::F;
     /// `c - a * b`, fused where the instruction set has it.
     fn fnma(self, a: Self::F, b: Self::F, c: Self::F) -> Self::F;
+    /// `1 / sqrt(a)` for positive normal `a`, to within 2^-21 relative (a few units in the
+    /// last place; exact on the scalar path), other inputs unspecified. An estimate refined
+    /// by Newton's step: a square root or a division occupies AVX-512's divider for 10 to
+    /// 12 cycles per register, this the multiply units for a few.
+    fn rsqrt(self, a: Self::F) -> Self::F;
     /// Round to nearest, ties to even.
     fn round(self, a: Self::F) -> Self::F;
     /// `a and not b`.

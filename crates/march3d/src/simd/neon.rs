@@ -30,6 +30,16 @@ impl Pack for Neon {
         unsafe { vfmsq_f32(c, a, b) }
     }
     #[inline(always)]
+    fn rsqrt(self, a: float32x4_t) -> float32x4_t {
+        // SAFETY: NEON is available. `frsqrte` gives 8 bits; each `frsqrts` step (`(3 - a
+        // y^2) / 2`) doubles them.
+        unsafe {
+            let mut y = vrsqrteq_f32(a);
+            y = vmulq_f32(y, vrsqrtsq_f32(vmulq_f32(a, y), y));
+            vmulq_f32(y, vrsqrtsq_f32(vmulq_f32(a, y), y))
+        }
+    }
+    #[inline(always)]
     fn round(self, a: float32x4_t) -> float32x4_t {
         // SAFETY: NEON is available. `frintn` rounds to nearest, ties to even.
         unsafe { vrndnq_f32(a) }

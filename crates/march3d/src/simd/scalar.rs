@@ -27,6 +27,10 @@ impl Pack for Scalar {
         c - a * b
     }
     #[inline(always)]
+    fn rsqrt(self, a: f32) -> f32 {
+        1.0 / a.sqrt()
+    }
+    #[inline(always)]
     fn round(self, a: f32) -> f32 {
         a.round_ties_even()
     }

@@ -35,6 +35,12 @@ fn arithmetic_counts_one_flop_and_fma_two() {
 }
 
 #[test]
+fn rsqrt_counts_one_flop_as_the_square_root_it_replaces() {
+    let (r, n) = counted(|p| p.rsqrt(p.splat(4.0)));
+    assert_eq!((r, n), (0.5, 1));
+}
+
+#[test]
 fn free_operations_count_nothing() {
     let ((), n) = counted(|p| {
         let a = p.load(&[1.5]);

@@ -446,3 +446,38 @@ fn each_backend_reports_its_own_width() {
         }
     }
 }
+
+/// `rsqrt` of the inputs, lane by lane.
+#[derive(Clone)]
+struct RsqrtKernel(Vec<f32>);
+
+impl PackKernel for RsqrtKernel {
+    type Output = Vec<u32>;
+
+    fn run<P: Pack>(self, p: P) -> Vec<u32> {
+        map1(p, &self.0, |v| p.rsqrt(v))
+    }
+}
+
+#[test]
+fn rsqrt_is_within_its_bound_on_every_backend() {
+    // Every binade of the normals, at mantissas near the ends and the middle of the
+    // estimates' tables, and a dense sweep of two binades.
+    let mantissas = [1.0, 1.0 + f32::EPSILON, 1.25, 1.5, 1.732_050_8, 1.999_999_9];
+    let mut xs: Vec<f32> = (-126..=127)
+        .flat_map(|e| mantissas.map(|m| m * 2f32.powi(e)))
+        .collect();
+    xs.extend((0..20_000).map(|k| 1.0 + 3.0 * k as f32 / 20_000.0));
+    let n = xs.len();
+    for (backend, _, got) in on_every_backend(RsqrtKernel(pad(xs.clone()))) {
+        for (&x, &g) in xs.iter().zip(&got[..n]) {
+            let want = 1.0 / f64::from(x).sqrt();
+            let err = (f64::from(f32::from_bits(g)) - want).abs() / want;
+            assert!(
+                err <= 2f64.powi(-21),
+                "{backend} rsqrt({x:e}) = {:e}, want {want:e} (relative error {err:e})",
+                f32::from_bits(g)
+            );
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! The polynomial math against double precision, on every backend.
 
 use super::super::{Pack, PackKernel};
-use super::{on_every_backend, pad};
+use super::{WIDEST, on_every_backend, pad};
 use crate::math;
 
 // ---------------------------------------------------------------------------------------
@@ -211,7 +211,7 @@ fn values(f: MathFn, xs: &[f32], ys: &[f32]) -> Vec<(&'static str, Vec<f32>)> {
     // Padding with ones keeps every function's padding lanes ordinary.
     let padded = |v: &[f32]| {
         let mut v = v.to_vec();
-        v.resize(n.next_multiple_of(16), 1.0);
+        v.resize(n.next_multiple_of(WIDEST), 1.0);
         v
     };
     let (xs, ys) = (padded(xs), padded(ys));

@@ -12,7 +12,11 @@ mod lanes;
 mod math;
 
 use super::count::Counting;
-use super::{Pack, PackKernel};
+use super::{Pack, PackKernel, Pair};
+#[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
+use craterfield_core::simd::Neon;
+#[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
+use craterfield_core::simd::{Avx2, Avx512};
 use craterfield_core::simd::{Lanes, Scalar};
 
 /// Floats that break careless lane code: signed zeros, infinities, NaN, subnormals, the
@@ -80,10 +84,13 @@ fn int_inputs() -> Vec<i32> {
     ]
 }
 
-/// `v` padded with zeros to a multiple of 8 lanes (a multiple of every backend's width).
+/// Lanes of the widest pack, a [`Pair`] of AVX-512 registers: every column is padded to
+/// a multiple of it.
+pub(super) const WIDEST: usize = 32;
+
+/// `v` padded with zeros to a multiple of every backend's width.
 fn pad<T: Copy + Default>(mut v: Vec<T>) -> Vec<T> {
-    // A whole number of the widest packets (AVX-512's 16 lanes).
-    while !v.len().is_multiple_of(16) {
+    while !v.len().is_multiple_of(WIDEST) {
         v.push(T::default());
     }
     v
@@ -113,35 +120,30 @@ fn triples(xs: &[f32]) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
     (pad(cols.0), pad(cols.1), pad(cols.2))
 }
 
-/// Runs `k` on every backend this machine has: (name, width, output).
+/// Runs `k` on every backend this machine has, and on a [`Pair`] of each but the counting
+/// one: (name, width, output).
 fn on_every_backend<K: PackKernel + Clone>(k: K) -> Vec<(&'static str, usize, K::Output)> {
+    // Without a vector backend compiled in (feature `force-scalar`) nothing is pushed.
+    #[allow(unused_mut)]
     let mut out = vec![
         ("scalar", Scalar::WIDTH, Pack::call(Scalar, k.clone())),
+        ("scalar pair", 2, Pack::call(Pair(Scalar), k.clone())),
         ("counting", Counting::WIDTH, Counting.call(k.clone())),
     ];
     #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
     if let Some(p) = craterfield_core::simd::Avx2::new() {
-        out.push((
-            "avx2",
-            craterfield_core::simd::Avx2::WIDTH,
-            Pack::call(p, k.clone()),
-        ));
+        out.push(("avx2", Avx2::WIDTH, Pack::call(p, k.clone())));
+        out.push(("avx2 pair", 2 * Avx2::WIDTH, Pack::call(Pair(p), k.clone())));
     }
     #[cfg(all(target_arch = "x86_64", not(feature = "force-scalar")))]
     if let Some(p) = craterfield_core::simd::Avx512::new() {
-        out.push((
-            "avx512",
-            craterfield_core::simd::Avx512::WIDTH,
-            Pack::call(p, k.clone()),
-        ));
+        out.push(("avx512", Avx512::WIDTH, Pack::call(p, k.clone())));
+        out.push(("avx512 pair", WIDEST, Pack::call(Pair(p), k.clone())));
     }
     #[cfg(all(target_arch = "aarch64", not(feature = "force-scalar")))]
     if let Some(p) = craterfield_core::simd::Neon::new() {
-        out.push((
-            "neon",
-            craterfield_core::simd::Neon::WIDTH,
-            Pack::call(p, k.clone()),
-        ));
+        out.push(("neon", Neon::WIDTH, Pack::call(p, k.clone())));
+        out.push(("neon pair", 2 * Neon::WIDTH, Pack::call(Pair(p), k.clone())));
     }
     out
 }
