@@ -452,7 +452,7 @@ fn print_tables(r: &Report, o: &Options) {
         o.size, r.clock_ghz, r.clock_source
     );
     println!(
-        "{:<11} {:<24} {:>7} {:>8} {:>8} {:>8} {:>8} {:>7} {:>11} {:>9} {:>12}",
+        "{:<11} {:<28} {:>7} {:>8} {:>8} {:>8} {:>8} {:>7} {:>11} {:>9} {:>12}",
         "scene",
         "impl",
         "threads",
@@ -473,7 +473,7 @@ fn print_tables(r: &Report, o: &Options) {
     };
     for row in &r.reference {
         println!(
-            "{:<11} {:<24} {:>7} {} {:>7} {:>11} {:>9} {:>12}",
+            "{:<11} {:<28} {:>7} {} {:>7} {:>11} {:>9} {:>12}",
             row.scene,
             format!("ref {}", row.binary),
             row.threads,
@@ -490,7 +490,7 @@ fn print_tables(r: &Report, o: &Options) {
                 format!("{:.2}x", b.seconds.median / row.seconds.median)
             });
         println!(
-            "{:<11} {:<24} {:>7} {} {:>7.2} {:>11.3} {:>9} {:>12}",
+            "{:<11} {:<28} {:>7} {} {:>7.2} {:>11.3} {:>9} {:>12}",
             row.scene,
             row.implementation,
             row.threads,

@@ -37,7 +37,7 @@ pub(crate) fn map<P: Pack>(
     mats: bool,
     tally: &mut Tally,
 ) -> (P::F, P::I) {
-    let (d, m, _) = map_split(p, s, q, active, mats, tally);
+    let (d, m, _) = map_io(p, s, q, active, (mats, false), tally);
     (d, m)
 }
 
@@ -52,6 +52,19 @@ pub(crate) fn map_split<P: Pack>(
     mats: bool,
     tally: &mut Tally,
 ) -> (P::F, P::I, P::F) {
+    map_io(p, s, q, active, (mats, true), tally)
+}
+
+/// [`map_split`] when `rest`, else [`map`] (with a meaningless third value).
+#[inline(always)]
+fn map_io<P: Pack>(
+    p: P,
+    s: &SceneConstants,
+    q: V3<P>,
+    active: P::M,
+    (mats, rest): (bool, bool),
+    tally: &mut Tally,
+) -> (P::F, P::I, P::F) {
     let mut io = MapIo::default();
     p.store(q.x, &mut io.x);
     p.store(q.y, &mut io.y);
@@ -61,6 +74,7 @@ pub(crate) fn map_split<P: Pack>(
         s,
         io: &mut io,
         mats,
+        rest,
         tally,
     });
     (p.load(&io.d), p.load_i(&io.m), p.load(&io.rest))
@@ -97,6 +111,7 @@ struct MapCall<'a> {
     s: &'a SceneConstants,
     io: &'a mut MapIo,
     mats: bool,
+    rest: bool,
     tally: &'a mut Tally,
 }
 
@@ -111,21 +126,21 @@ impl PackKernel for MapCall<'_> {
             z: p.load(&self.io.z),
         };
         let active = p.gt(p.load(&self.io.active), p.splat(0.5));
-        let (d, m, rest) = map_inline(p, self.s, q, active, self.mats, self.tally);
+        let (d, m, rest) = map_inline(p, self.s, q, active, (self.mats, self.rest), self.tally);
         p.store(d, &mut self.io.d);
         p.store_i(m, &mut self.io.m);
         p.store(rest, &mut self.io.rest);
     }
 }
 
-/// The body of [`map`].
+/// The body of [`map_split`] (of [`map`] unless `rest`).
 #[inline(always)]
 fn map_inline<P: Pack>(
     p: P,
     s: &SceneConstants,
     q: V3<P>,
     active: P::M,
-    mats: bool,
+    (mats, rest_wanted): (bool, bool),
     tally: &mut Tally,
 ) -> (P::F, P::I, P::F) {
     let mut d = p.splat(f32::INFINITY);
@@ -149,9 +164,13 @@ fn map_inline<P: Pack>(
         }
     }
     // The distance without the landing planes, kept only where there are some.
-    let split = !s.planes.is_empty();
+    let split = rest_wanted && !s.planes.is_empty();
     let mut rest = d;
     for node in &s.nodes {
+        let in_rest = split && !node.plane;
+        if !in_rest && beaten(p, node, q, d, active) {
+            continue;
+        }
         let dn = node_distance(p, s, node, q, active, tally);
         if mats {
             m = p.select_i(p.lt(dn, d), p.splat_i(node.material), m);
@@ -169,6 +188,23 @@ fn map_inline<P: Pack>(
         m = p.select_i(above, me, m);
     }
     (d, m, rest)
+}
+
+/// Whether, in every active lane, what is nearer so far (`d`) is nearer than `node` can be
+/// ([`super::constants::FarBound`]): then the node changes no bit, and is not evaluated.
+#[inline(always)]
+fn beaten<P: Pack>(p: P, node: &NodeC, q: V3<P>, d: P::F, active: P::M) -> bool {
+    let Some(far) = &node.far else {
+        return false;
+    };
+    let r2 = q.sub_c(p, far.centre).len2(p);
+    let r = p.sqrt(r2);
+    let line = |(slope, offset): (f32, f32)| p.fma(p.splat(slope), r, p.splat(offset));
+    let bound = far.lines[1..]
+        .iter()
+        .fold(line(far.lines[0]), |b, &l| p.max(b, line(l)));
+    let beaten = p.and(p.ge(r2, p.splat(far.radius2)), p.lt(d, bound));
+    !p.any(p.and_not(active, beaten))
 }
 
 /// One node's distance at `q` (world space).

@@ -341,8 +341,8 @@ mod tests {
         Some(0.25 * m.ln() * m.sqrt() / dz)
     }
 
-    /// [`mandelbulb`] on a backend, at points as f32.
-    struct Distances<'a>(&'a [[f32; 3]]);
+    /// [`mandelbulb`] on a backend, at points as f32, with a derivative seed.
+    struct Distances<'a>(&'a [[f32; 3]], f32);
 
     impl PackKernel for Distances<'_> {
         type Output = Vec<f32>;
@@ -358,7 +358,7 @@ mod tests {
                     y: p.load(&lanes[1]),
                     z: p.load(&lanes[2]),
                 };
-                let d = mandelbulb(p, c, (4, 256.0, 1.5), p.all_set());
+                let d = mandelbulb(p, c, (4, 256.0, self.1), p.all_set());
                 let mut v = [0.0f32; crate::cpu::lanes::MAX_WIDTH];
                 p.store(d, &mut v);
                 out.extend_from_slice(&v[..chunk.len()]);
@@ -375,7 +375,7 @@ mod tests {
             .chain([[1e-20, 0.3, 0.0], [0.0, 0.9, 0.0], [0.2, 0.0, 1e-19]])
             .collect();
         for backend in crate::simd::TRACER_BACKENDS {
-            let Ok(got) = crate::simd::run(backend, Distances(&points)) else {
+            let Ok(got) = crate::simd::run(backend, Distances(&points, 1.5)) else {
                 continue;
             };
             for (q, &g) in points.iter().zip(&got) {
@@ -388,6 +388,47 @@ mod tests {
             }
         }
         assert!(checked > 1500, "only {checked} points compared");
+    }
+
+    #[test]
+    fn far_bound_is_below_the_estimate_on_every_backend() {
+        use crate::cpu::constants::FarBound;
+        // Directions over the sphere, at distances from the bound's radius outwards.
+        let mut points = Vec::new();
+        for i in 0..400 {
+            let (u, v) = (i as f32 * 0.618_034 % 1.0, (i as f32 + 0.5) / 400.0);
+            let (phi, z) = (u * std::f32::consts::TAU, 2.0 * v - 1.0);
+            let s = (1.0 - z * z).sqrt();
+            let dir = glam::Vec3::new(s * phi.cos(), z, s * phi.sin());
+            for r in [
+                2.0, 2.001, 2.5, 3.0, 4.0, 6.0, 9.5, 16.0, 40.0, 150.0, 1000.0,
+            ] {
+                points.push((dir * r).to_array());
+            }
+        }
+        for derivative in [0.25, 1.0, 1.5, 6.0] {
+            let far = FarBound::mandelbulb(glam::Vec3::ZERO, 4, 256.0, derivative).unwrap();
+            for backend in crate::simd::TRACER_BACKENDS {
+                let Ok(got) = crate::simd::run(backend, Distances(&points, derivative)) else {
+                    continue;
+                };
+                for (q, &d) in points.iter().zip(&got) {
+                    let r = glam::Vec3::from_array(*q).length();
+                    let bound = far
+                        .lines
+                        .iter()
+                        .map(|&(slope, offset)| slope * r + offset)
+                        .fold(f32::NEG_INFINITY, f32::max);
+                    assert!(
+                        r * r < far.radius2 || d > bound,
+                        "{backend}, derivative {derivative}, at {q:?}: estimate {d} under {bound}"
+                    );
+                }
+            }
+        }
+        // Parameters the bound does not hold for have none.
+        assert!(FarBound::mandelbulb(glam::Vec3::ZERO, 4, 1e6, 1.5).is_none());
+        assert!(FarBound::mandelbulb(glam::Vec3::ZERO, 4, 256.0, 0.0).is_none());
     }
 
     #[test]

@@ -152,3 +152,53 @@ fn streams_give_every_ray_the_bits_of_its_packet_march() {
         }
     }
 }
+
+#[test]
+fn far_bounds_skip_the_bulb_without_changing_a_bit() {
+    let scene = Scene::builtin("mandelbulb").unwrap();
+    let camera = scene.camera.camera().unwrap();
+    let (w, h) = (128, 72);
+    let opts = CompileOptions {
+        aspect: w as f32 / h as f32,
+        height: h,
+        ..CompileOptions::paper()
+    };
+    let plan = emit(&scene, &camera, &opts).unwrap();
+    let bounded = Frame::new(&plan, &camera, w, h);
+    let mut unbounded = bounded.clone();
+    for node in &mut unbounded.scene.nodes {
+        assert!(node.far.take().is_some() || node.plane);
+    }
+    let counted = |frame: &Frame| {
+        super::run_threads(frame, 1, 16, |job| {
+            Ok(crate::simd::count::Counting.call(job))
+        })
+        .unwrap()
+    };
+    let ((with, t_with), (without, t_without)) = (counted(&bounded), counted(&unbounded));
+    assert_eq!(with.rgba, without.rgba, "counting backend");
+    // Every skip is an evaluation not made.
+    assert!(
+        t_with.tally.sdf < t_without.tally.sdf * 95 / 100,
+        "{} of {} evaluations",
+        t_with.tally.sdf,
+        t_without.tally.sdf
+    );
+    for b in [
+        Backend::Scalar,
+        Backend::Avx2,
+        Backend::Avx512,
+        Backend::Neon,
+    ] {
+        if !b.is_available() {
+            continue;
+        }
+        let render = |frame: &Frame| {
+            super::run_threads(frame, 1, 16, |job| Ok(crate::simd::run(b, job)?))
+                .unwrap()
+                .0
+                .rgba
+        };
+        assert!(render(&bounded) == render(&unbounded), "{b}");
+    }
+}
