@@ -6,8 +6,9 @@
 //!    per arithmetic operation or math-library call, the paper's convention); flops per
 //!    cycle from those and the measured time at the stated clock.
 //!    With `--reference BIN` (repeatable), the reference renderer's binaries run on the same
-//!    scenes in the same run (`bench_reference3d`), and each row shows the fastest one's
-//!    time over ours. The FLIP of our pictures against the reference's vendored pictures
+//!    scenes in the same run (`bench_reference3d`), in rounds with ours (one frame of every
+//!    configuration per round, so that a slow spell of a shared machine falls on all of
+//!    them), and each row shows the fastest one's time over ours. The FLIP of our pictures against the reference's vendored pictures
 //!    (and against each binary's output) is printed.
 //! 2. The forest world: SDF evaluations and march steps per pixel (counting backend) and
 //!    GPU frame time with every emitter optimization on, all off (naive), and each one off,
@@ -143,26 +144,22 @@ fn os_clock_ghz() -> Option<f64> {
     Some(mhz / 1000.0)
 }
 
-fn time_cpu(
+/// One frame of `plan` on `isa` with `threads` threads: the seconds it took.
+fn time_frame(
     plan: &Plan,
     cam: &Camera3d,
     size: (u32, u32),
     isa: Backend,
     threads: usize,
-    frames: u32,
-) -> Result<Tails, String> {
+) -> Result<f64, String> {
     let opts = TraceOptions {
         threads,
         backend: Some(isa),
         ..TraceOptions::default()
     };
-    let mut s = Vec::new();
-    for _ in 0..frames.max(1) {
-        let t = Instant::now();
-        cpu::render(plan, cam, size.0, size.1, &opts).map_err(|e| e.to_string())?;
-        s.push(t.elapsed().as_secs_f64());
-    }
-    Ok(Tails::of(s))
+    let t = Instant::now();
+    cpu::render(plan, cam, size.0, size.1, &opts).map_err(|e| e.to_string())?;
+    Ok(t.elapsed().as_secs_f64())
 }
 
 /// Our picture of each paper scene (widest instruction set, all threads) against the
@@ -247,39 +244,73 @@ fn gpu_frames(o: &Options, gpu: &mut Option<Gpu>) -> Result<Vec<GpuFrame>, Strin
     Ok(out)
 }
 
-fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, String> {
+/// The paper scenes' rows, ours and each reference binary's, timed in rounds: a round runs
+/// every configuration of a scene and thread count once, so that a slow spell of the machine
+/// (on a shared one they last seconds) falls on all of them and the ratios stay fair. The
+/// scalar path runs in the first round only.
+fn paper_rows(
+    o: &Options,
+    ghz: f64,
+    all_threads: usize,
+) -> Result<(Vec<Row>, Vec<RefRow>), String> {
     let size = parse_size(&o.size)?;
     let best = simd::best();
-    let mut rows = Vec::new();
+    let mut threads = vec![1];
+    if all_threads > 1 {
+        threads.push(all_threads);
+    }
+    // AVX2 beside a wider best: the reference renderer is AVX2 code.
+    let mut isas: Vec<Backend> = Vec::new();
+    if !o.no_scalar && best != Backend::Scalar {
+        isas.push(Backend::Scalar);
+    }
+    if best == Backend::Avx512 && Backend::Avx2.is_available() {
+        isas.push(Backend::Avx2);
+    }
+    isas.push(best);
+    let (mut rows, mut refs) = (Vec::new(), Vec::new());
     for name in ["scene0", "mandelbulb"] {
         let scene = Scene::builtin(name).map_err(|e| e.to_string())?;
         let (plan, cam) = plan_for(&scene, &CompileOptions::paper(), size)?;
         let (_, stats) = cpu::render_counted(&plan, &cam, size.0, size.1, all_threads)
             .map_err(|e| e.to_string())?;
         let gflop = stats.flops as f64 * 1e-9;
-        let mut threads = vec![1];
-        if all_threads > 1 {
-            threads.push(all_threads);
-        }
-        let mut scalar_s = Vec::new();
-        // AVX2 beside a wider best: the reference renderer is AVX2 code.
-        let mut isas: Vec<Backend> = Vec::new();
-        if !o.no_scalar && best != Backend::Scalar {
-            isas.push(Backend::Scalar);
-        }
-        if best == Backend::Avx512 && Backend::Avx2.is_available() {
-            isas.push(Backend::Avx2);
-        }
-        isas.push(best);
-        for isa in isas {
-            for (k, &t) in threads.iter().enumerate() {
-                let frames = if isa == Backend::Scalar { 1 } else { o.frames };
-                let seconds = time_cpu(&plan, &cam, size, isa, t, frames)?;
-                let s = seconds.median;
-                if isa == Backend::Scalar {
-                    scalar_s.push(s);
+        for &t in &threads {
+            let mut ours = vec![Vec::new(); isas.len()];
+            let mut theirs = vec![Vec::new(); o.reference.len()];
+            for round in 0..o.frames.max(1) {
+                for (bin, v) in o.reference.iter().zip(&mut theirs) {
+                    v.push(reference::time_reference_once(bin, name, t)?);
                 }
-                let speedup = scalar_s.get(k).map(|sc| sc / s);
+                for (&isa, v) in isas.iter().zip(&mut ours) {
+                    if isa != Backend::Scalar || round == 0 {
+                        v.push(time_frame(&plan, &cam, size, isa, t)?);
+                    }
+                }
+            }
+            for (bin, v) in o.reference.iter().zip(theirs) {
+                let row = RefRow {
+                    scene: name.to_string(),
+                    binary: reference::label(bin),
+                    threads: t,
+                    frames: v.len() as u32,
+                    seconds: Tails::of(v),
+                    flip_vs_vendored: None,
+                };
+                if !o.json {
+                    eprintln!(
+                        "  reference {} {name} x{t}: {:.3} s",
+                        row.binary, row.seconds.median
+                    );
+                }
+                refs.push(row);
+            }
+            let scalar = isas.iter().position(|&i| i == Backend::Scalar);
+            let scalar_s = scalar.map(|k| Tails::of(ours[k].clone()).median);
+            for (&isa, v) in isas.iter().zip(ours) {
+                let frames = v.len() as u32;
+                let seconds = Tails::of(v);
+                let s = seconds.median;
                 rows.push(Row {
                     scene: name.to_string(),
                     implementation: isa.name().to_string(),
@@ -288,15 +319,33 @@ fn paper_rows(o: &Options, ghz: f64, all_threads: usize) -> Result<Vec<Row>, Str
                     frames,
                     gflop,
                     flops_per_cycle: gflop * 1e9 / (s * ghz * 1e9 * t as f64),
-                    speedup_vs_scalar: speedup,
+                    speedup_vs_scalar: scalar_s.map(|sc| sc / s),
                 });
                 if !o.json {
                     eprintln!("  {name} {} x{t}: {s:.3} s", isa.name());
                 }
             }
         }
+        // Every run of a binary writes the same picture: compared once, after the last.
+        for bin in &o.reference {
+            let flip = reference::flip_vs_vendored(bin, &o.pictures, name)?;
+            let label = reference::label(bin);
+            for row in refs
+                .iter_mut()
+                .filter(|r| r.scene == name && r.binary == label)
+            {
+                row.flip_vs_vendored = flip;
+            }
+        }
     }
-    Ok(rows)
+    // The table lists each binary's rows together.
+    let order = |r: &RefRow| {
+        o.reference
+            .iter()
+            .position(|b| reference::label(b) == r.binary)
+    };
+    refs.sort_by_key(|r| order(r));
+    Ok((rows, refs))
 }
 
 struct Gpu {
@@ -417,8 +466,7 @@ pub(crate) fn run(o: &Options) -> Result<ExitCode, String> {
     let adapter = gpu
         .as_ref()
         .map_or_else(|| "none".to_string(), |g| g.ctx.describe());
-    let reference = reference::reference_rows(&o.reference, &o.pictures, threads, o.frames)?;
-    let rows = paper_rows(o, ghz, threads)?;
+    let (rows, reference) = paper_rows(o, ghz, threads)?;
     let fidelity = fidelity_rows(o)?;
     let (emitter, naive_vs_all) = emitter_rows(o, &mut gpu)?;
     let gpu_frames = gpu_frames(o, &mut gpu)?;

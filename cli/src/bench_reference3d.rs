@@ -50,36 +50,27 @@ pub(crate) fn label(bin: &Path) -> String {
         .map_or_else(|| bin.display().to_string(), |n| n.to_string_lossy().into())
 }
 
-/// Runs `bin` on `scene` with `threads` OpenMP threads, `frames` times; the seconds' median
-/// and tails.
-pub(crate) fn time_reference(
-    bin: &Path,
-    scene: &str,
-    threads: usize,
-    frames: u32,
-) -> Result<Tails, String> {
+/// Runs `bin` on `scene` once with `threads` OpenMP threads: the seconds it took.
+pub(crate) fn time_reference_once(bin: &Path, scene: &str, threads: usize) -> Result<f64, String> {
     let dir = bin
         .parent()
         .ok_or_else(|| format!("{}: no folder", bin.display()))?;
     std::fs::create_dir_all(dir.join("../output/render_out"))
         .map_err(|e| format!("{}: {e}", dir.display()))?;
-    let mut times = Vec::new();
-    for _ in 0..frames.max(1) {
-        let t = Instant::now();
-        let status = Command::new(bin)
-            .arg(scene)
-            .current_dir(dir)
-            .env("OMP_NUM_THREADS", threads.to_string())
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .status()
-            .map_err(|e| format!("{}: {e}", bin.display()))?;
-        times.push(t.elapsed().as_secs_f64());
-        if !status.success() {
-            return Err(format!("{} {scene}: {status}", bin.display()));
-        }
+    let t = Instant::now();
+    let status = Command::new(bin)
+        .arg(scene)
+        .current_dir(dir)
+        .env("OMP_NUM_THREADS", threads.to_string())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .map_err(|e| format!("{}: {e}", bin.display()))?;
+    let seconds = t.elapsed().as_secs_f64();
+    if !status.success() {
+        return Err(format!("{} {scene}: {status}", bin.display()));
     }
-    Ok(Tails::of(times))
+    Ok(seconds)
 }
 
 /// The picture `bin` wrote for `scene` on its last run.
@@ -114,49 +105,20 @@ pub(crate) fn fidelity(
     })
 }
 
-/// Every given binary on both paper scenes, one thread and `all_threads`.
-pub(crate) fn reference_rows(
-    bins: &[PathBuf],
+/// FLIP of the picture `bin` last wrote for `scene` against the vendored one in
+/// `pictures` (every run writes the same picture, so it is compared once), if both exist.
+pub(crate) fn flip_vs_vendored(
+    bin: &Path,
     pictures: &Path,
-    all_threads: usize,
-    frames: u32,
-) -> Result<Vec<RefRow>, String> {
-    let mut threads = vec![1];
-    if all_threads > 1 {
-        threads.push(all_threads);
-    }
-    let mut rows = Vec::new();
-    for bin in bins {
-        for scene in ["scene0", "mandelbulb"] {
-            let mut timed = Vec::new();
-            for &t in &threads {
-                let seconds = time_reference(bin, scene, t, frames)?;
-                eprintln!(
-                    "  reference {} {scene} x{t}: {:.3} s",
-                    label(bin),
-                    seconds.median
-                );
-                timed.push((t, seconds));
-            }
-            // Every run writes the same picture: compared once, after the last.
-            let vendored = pictures.join(format!("{scene}.png"));
-            let flip_vs_vendored = match load_png(&reference_output(bin, scene)) {
-                Ok(img) if vendored.exists() => {
-                    Some(fidelity(scene, &img, ("vendored", &vendored))?.flip)
-                }
-                _ => None,
-            };
-            rows.extend(timed.into_iter().map(|(threads, seconds)| RefRow {
-                scene: scene.to_string(),
-                binary: label(bin),
-                threads,
-                seconds,
-                frames: frames.max(1),
-                flip_vs_vendored,
-            }));
+    scene: &str,
+) -> Result<Option<f64>, String> {
+    let vendored = pictures.join(format!("{scene}.png"));
+    match load_png(&reference_output(bin, scene)) {
+        Ok(img) if vendored.exists() => {
+            Ok(Some(fidelity(scene, &img, ("vendored", &vendored))?.flip))
         }
+        _ => Ok(None),
     }
-    Ok(rows)
 }
 
 /// The fastest reference row for `scene` at `threads`.

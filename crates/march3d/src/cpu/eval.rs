@@ -65,71 +65,75 @@ fn map_io<P: Pack>(
     (mats, rest): (bool, bool),
     tally: &mut Tally,
 ) -> (P::F, P::I, P::F) {
-    let mut io = MapIo::default();
-    p.store(q.x, &mut io.x);
-    p.store(q.y, &mut io.y);
-    p.store(q.z, &mut io.z);
-    p.store(p.select(active, p.splat(1.0), p.splat(0.0)), &mut io.active);
-    p.call(MapCall {
+    let input = MapIn {
+        q: [lanes(p, q.x), lanes(p, q.y), lanes(p, q.z)],
+        active: lanes(p, p.select(active, p.splat(1.0), p.splat(0.0))),
+    };
+    let out = p.call(MapCall {
         s,
-        io: &mut io,
+        input: &input,
         mats,
         rest,
         tally,
     });
-    (p.load(&io.d), p.load_i(&io.m), p.load(&io.rest))
+    (p.load(&out.d), p.load_i(&out.m), p.load(&out.rest))
 }
 
-/// The lanes of one [`map`] call, in memory (a kernel is generic over the backend, so its
-/// inputs cannot be one backend's registers).
-struct MapIo {
-    x: [f32; MAX_WIDTH],
-    y: [f32; MAX_WIDTH],
-    z: [f32; MAX_WIDTH],
+/// `v`'s lanes in memory (a function, not a closure: a closure may be compiled out of line,
+/// without the backend's instruction set).
+#[inline(always)]
+fn lanes<P: Pack>(p: P, v: P::F) -> [f32; MAX_WIDTH] {
+    let mut a = [0.0; MAX_WIDTH];
+    p.store(v, &mut a);
+    a
+}
+
+/// The lanes of one [`map`] call's point, in memory (a kernel is generic over the backend,
+/// so its inputs cannot be one backend's registers).
+struct MapIn {
+    q: [[f32; MAX_WIDTH]; 3],
     active: [f32; MAX_WIDTH],
+}
+
+/// What one [`map`] call returns, in memory; returned by value, so that nothing is written
+/// before the kernel writes it (zeroing an output buffer per call showed in profiles).
+struct MapOut {
     d: [f32; MAX_WIDTH],
     m: [i32; MAX_WIDTH],
     rest: [f32; MAX_WIDTH],
 }
 
-impl Default for MapIo {
-    fn default() -> MapIo {
-        MapIo {
-            x: [0.0; MAX_WIDTH],
-            y: [0.0; MAX_WIDTH],
-            z: [0.0; MAX_WIDTH],
-            active: [0.0; MAX_WIDTH],
-            d: [0.0; MAX_WIDTH],
-            m: [0; MAX_WIDTH],
-            rest: [0.0; MAX_WIDTH],
-        }
-    }
-}
-
 /// [`map_inline`] as a kernel, so that `Pack::call` compiles it once per backend.
 struct MapCall<'a> {
     s: &'a SceneConstants,
-    io: &'a mut MapIo,
+    input: &'a MapIn,
     mats: bool,
     rest: bool,
     tally: &'a mut Tally,
 }
 
 impl PackKernel for MapCall<'_> {
-    type Output = ();
+    type Output = MapOut;
 
     #[inline(always)]
-    fn run<P: Pack>(self, p: P) {
+    fn run<P: Pack>(self, p: P) -> MapOut {
+        let [x, y, z] = &self.input.q;
         let q = V3 {
-            x: p.load(&self.io.x),
-            y: p.load(&self.io.y),
-            z: p.load(&self.io.z),
+            x: p.load(x),
+            y: p.load(y),
+            z: p.load(z),
         };
-        let active = p.gt(p.load(&self.io.active), p.splat(0.5));
+        let active = p.gt(p.load(&self.input.active), p.splat(0.5));
         let (d, m, rest) = map_inline(p, self.s, q, active, (self.mats, self.rest), self.tally);
-        p.store(d, &mut self.io.d);
-        p.store_i(m, &mut self.io.m);
-        p.store(rest, &mut self.io.rest);
+        let mut out = MapOut {
+            d: [0.0; MAX_WIDTH],
+            m: [0; MAX_WIDTH],
+            rest: [0.0; MAX_WIDTH],
+        };
+        p.store(d, &mut out.d);
+        p.store_i(m, &mut out.m);
+        p.store(rest, &mut out.rest);
+        out
     }
 }
 
