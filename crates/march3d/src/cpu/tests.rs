@@ -110,6 +110,23 @@ impl PackKernel for Compare<'_> {
     }
 }
 
+/// A builtin scene's frame with the paper preset at `w x h`, with `steps` steps at most
+/// where given.
+fn paper_frame(name: &str, (w, h): (u32, u32), steps: Option<u32>) -> Frame {
+    let scene = Scene::builtin(name).unwrap();
+    let camera = scene.camera.camera().unwrap();
+    let opts = CompileOptions {
+        aspect: w as f32 / h as f32,
+        height: h,
+        ..CompileOptions::paper()
+    };
+    let mut plan = emit(&scene, &camera, &opts).unwrap();
+    if let Some(steps) = steps {
+        plan.march.max_steps = steps;
+    }
+    Frame::new(&plan, &camera, w, h)
+}
+
 #[test]
 fn streams_give_every_ray_the_bits_of_its_packet_march() {
     for (name, steps) in [
@@ -117,20 +134,8 @@ fn streams_give_every_ray_the_bits_of_its_packet_march() {
         ("mandelbulb", None),
         ("mandelbulb", Some(40)),
     ] {
-        let scene = Scene::builtin(name).unwrap();
-        let camera = scene.camera.camera().unwrap();
-        let (w, h) = (37, 23);
-        let opts = CompileOptions {
-            aspect: w as f32 / h as f32,
-            height: h,
-            ..CompileOptions::paper()
-        };
-        let mut plan = emit(&scene, &camera, &opts).unwrap();
-        if let Some(steps) = steps {
-            // Rays that run out of steps leave their lanes too.
-            plan.march.max_steps = steps;
-        }
-        let frame = Frame::new(&plan, &camera, w, h);
+        // With few steps, rays that run out of them leave their lanes too.
+        let frame = paper_frame(name, (37, 23), steps);
         let k = Compare { frame: &frame };
         let mut runs = vec![("counting", crate::simd::count::Counting.call(k.clone()))];
         for b in [
@@ -155,16 +160,7 @@ fn streams_give_every_ray_the_bits_of_its_packet_march() {
 
 #[test]
 fn far_bounds_skip_the_bulb_without_changing_a_bit() {
-    let scene = Scene::builtin("mandelbulb").unwrap();
-    let camera = scene.camera.camera().unwrap();
-    let (w, h) = (128, 72);
-    let opts = CompileOptions {
-        aspect: w as f32 / h as f32,
-        height: h,
-        ..CompileOptions::paper()
-    };
-    let plan = emit(&scene, &camera, &opts).unwrap();
-    let bounded = Frame::new(&plan, &camera, w, h);
+    let bounded = paper_frame("mandelbulb", (128, 72), None);
     let mut unbounded = bounded.clone();
     for node in &mut unbounded.scene.nodes {
         assert!(node.far.take().is_some() || node.plane);
