@@ -57,7 +57,7 @@ pub trait PackKernel {
 /// implementations live in this crate alone, so the deterministic field, which depends on
 /// `craterfield-core` and not on this crate, cannot name a fused lane.
 pub trait Pack: Lanes {
-    /// Whether the ray streams march two of this backend's registers per step ([`Pair`])
+    /// Whether the ray streams march two of this backend's registers per step (a `Pair`)
     /// in scenes whose distance is a long chain of dependent operations (the Mandelbulb's),
     /// where the operations' latency, not their throughput, bounds a march: true on the
     /// x86_64 vector backends, where it was measured.
