@@ -95,8 +95,8 @@ struct MapIn {
     active: [f32; MAX_WIDTH],
 }
 
-/// What one [`map`] call returns, in memory; returned by value, so that nothing is written
-/// before the kernel writes it (zeroing an output buffer per call showed in profiles).
+/// What one [`map`] call returns, in memory; returned by value, so that the caller does not
+/// zero a buffer for the kernel to overwrite (those stores showed in profiles).
 struct MapOut {
     d: [f32; MAX_WIDTH],
     m: [i32; MAX_WIDTH],

@@ -8,7 +8,8 @@
 //! of the queue, as soon as a quarter of the packet is free (a refill goes through memory;
 //! between refills the lanes stay in registers). Each step is [`plain_step`] or
 //! [`shadow_step`], whose lanes do not depend on each other, so every ray ends with the
-//! bits the packet march gives it.
+//! bits the packet march gives it. In scenes with long dependent chains (the Mandelbulb)
+//! a stream marches two registers at once ([`Pair`]), which hides their latency.
 
 use super::constants::SceneConstants;
 use super::eval::{SKY_I, Tally};
@@ -149,6 +150,13 @@ fn gather_mask<P: Pack>(p: P, values: &[bool]) -> Vec<P::M> {
     out
 }
 
+/// Whether streams on `P` march two of its registers per step ([`Pair`]): on backends
+/// that gain from it, in scenes whose distance is a long dependent chain.
+#[inline(always)]
+fn in_pairs<P: Pack>(s: &SceneConstants) -> bool {
+    P::STREAM_PAIRS && s.long_chains
+}
+
 /// Packets of rays: starting points, unit directions and the lanes that are rays.
 #[derive(Clone, Copy)]
 pub(crate) struct Packets<'a, P: Pack> {
@@ -176,7 +184,7 @@ pub(crate) fn march_packets<P: Pack>(
         return out;
     }
     let rays = PlainRays::new(p, o, dir, live);
-    let done = if P::STREAM_PAIRS && s.long_chains {
+    let done = if in_pairs::<P>(s) {
         rays.march(Pair(p), s, mc, tally)
     } else {
         rays.march(p, s, mc, tally)
@@ -363,7 +371,7 @@ pub(crate) fn shadow_packets<P: Pack>(
     let mut res = vec![1.0f32; live.len()];
     if max_steps > 0 {
         let (rays, params) = ((&init, &dirs, &live[..]), (limit, k, max_steps));
-        if P::STREAM_PAIRS && s.long_chains {
+        if in_pairs::<P>(s) {
             shadow_stream(Pair(p), s, mc, rays, params, &mut res, tally);
         } else {
             shadow_stream(p, s, mc, rays, params, &mut res, tally);

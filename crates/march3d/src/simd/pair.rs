@@ -4,7 +4,8 @@
 //! A long chain of dependent operations (the Mandelbulb's power iteration: a square root
 //! and a division per iteration, each waiting on the last) leaves the execution units idle
 //! while one register's result is in flight; the other half fills that time. The ray
-//! streams march in pairs on the backends that set [`Pack::STREAM_PAIRS`]. Lane `i` of the
+//! streams march in pairs on the backends that set [`Pack::STREAM_PAIRS`], in scenes whose
+//! distance is such a chain (`SceneConstants::long_chains`). Lane `i` of the
 //! low half is lane `i` of the pair, lane `i` of the high half is lane `WIDTH + i`, and each
 //! lane's bits are the backend's: a pair changes the schedule, never a result.
 
