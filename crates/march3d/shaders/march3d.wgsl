@@ -219,7 +219,7 @@ fn bulb8(w: vec3<f32>) -> vec3<f32> {
     let z4 = z2 * z2;
     let k3 = x2 + z2;
     // On (or, where rho^7 underflows, within 8 rho r^7 of) the axis, x and z are 0: not
-    // 0 * inf, which is NaN (cpu/prims.rs `bulb8` does the same).
+    // 0 * inf, which is NaN (cpu/prims.rs `bulb8_plus` does the same).
     let k7 = k3 * k3 * k3 * k3 * k3 * k3 * k3;
     let k2 = select(0.0, inverseSqrt(k7), k7 >= 1.17549435e-38);
     let k1 = x4 + y4 + z4 - 6.0 * y2 * z2 - 6.0 * x2 * y2 + 2.0 * z2 * x2;

@@ -152,19 +152,17 @@ pub(crate) fn mandelbulb<P: Pack>(
     let mut live = active;
     let bail = p.splat(bailout);
     for _ in 0..iterations {
-        // dz = 8 m^3.5 dz + 1, with m^3.5 as m^4 / sqrt(m): the reciprocal square root
-        // keeps the divider free for the power step's, and the derivative only scales the
-        // estimate (a few units in the last place of it move no surface). Below the
-        // smallest normal, m^3.5 is 0 in f32.
-        let m2 = p.mul(m, m);
-        let r = p.rsqrt(m);
-        let k = p.mul(p.mul(m2, m2), p.mul(r, dz));
-        let k = p.select(p.ge(m, p.splat(f32::MIN_POSITIVE)), k, p.splat(0.0));
-        let ndz = p.add(p.mul(p.splat(8.0), k), p.splat(1.0));
-        let nw = bulb8(p, w).add(p, c);
-        let nm = nw.len2(p);
+        // dz = 8 m^3.5 dz + 1, with m^3.5 = m^3 sqrt(m). The power step below uses no
+        // square root or division, so this one square root has the divider to itself, and
+        // it is off the chain from one w to the next.
+        let m3 = p.mul(p.mul(m, m), m);
+        let k = p.mul(p.mul(m3, p.sqrt(m)), dz);
+        let ndz = p.fma(p.splat(8.0), k, p.splat(1.0));
+        // A lane that has escaped keeps its m and dz, which are all the estimate reads; its
+        // w runs on (to infinity and NaN, which cost nothing) rather than pay three selects.
+        w = bulb8_plus(p, w, c);
+        let nm = w.len2(p);
         dz = p.select(live, ndz, dz);
-        w = V3::select(p, live, nw, w);
         m = p.select(live, nm, m);
         live = p.and_not(live, p.gt(nm, bail));
         if !p.any(live) {
@@ -175,61 +173,65 @@ pub(crate) fn mandelbulb<P: Pack>(
     p.div(num, dz)
 }
 
-/// `w^8` in the spherical power-8 form `r^8 (sin b sin a, cos b, sin b cos a)`, `b = 8
-/// acos(w.y / r)`, `a = 8 atan2(w.x, w.z)`, as polynomials in `x, y, z` (Quilez's closed
-/// form) with `rho = |w.xz|`: `k1 = x^4 + y^4 + z^4 - 6 y^2 rho^2 + 2 x^2 z^2`, `k2 =
-/// rho^-7`, `k4 = x^2 - y^2 + z^2`. The operations and their order are the reference
-/// renderer's (and the WGSL's), so that the fractal's surface, which magnifies every
-/// rounding, comes out the same.
+/// Below this `rho^2 = 2^-36`, `rho^7` is under the smallest normal f32 (`2^-126`).
+const RHO2_MIN: f32 = 1.0 / (1u64 << 36) as f32;
+/// Above this `rho^2 = 2^35`, `rho^-7` is near or under the smallest normal.
+const RHO2_MAX: f32 = (1u64 << 35) as f32;
+
+/// `w^8 + c`, with `w^8` in the spherical power-8 form `r^8 (sin b sin a, cos b, sin b cos
+/// a)`, `b = 8 acos(w.y / r)`, `a = 8 atan2(w.x, w.z)`, as polynomials in `x, y, z`
+/// (Quilez's closed form) with `rho = |w.xz|`: `k1 = x^4 + y^4 + z^4 - 6 y^2 rho^2 + 2 x^2
+/// z^2`, `k2 = rho^-7`, `k4 = x^2 - y^2 + z^2`, and
+/// `x' = 64 x y z (x^2 - z^2) k4 (x^4 - 6 x^2 z^2 + z^4) k1 k2`,
+/// `y' = -16 y^2 rho^2 k4^2 + k1^2`,
+/// `z' = -8 y k4 (x^8 - 28 x^2 z^2 (x^4 + z^4) + 70 x^4 z^4 + z^8) k1 k2`.
+///
+/// The step is the fractal's inner loop, so it is written for the shortest chain from one
+/// `w` to the next and the fewest operations: `k2` comes from the reciprocal square root
+/// and enters each product last (everything else is ready while it is computed), and
+/// multiply-adds fuse where a sum follows a product. That rounds differently from the
+/// reference renderer's order of operations; the pictures stay within its FLIP bound
+/// (`tests/march3d_views`).
 #[inline(always)]
-pub(crate) fn bulb8<P: Pack>(p: P, w: V3<P>) -> V3<P> {
+pub(crate) fn bulb8_plus<P: Pack>(p: P, w: V3<P>, c: V3<P>) -> V3<P> {
     let (x, y, z) = (w.x, w.y, w.z);
     let (x2, y2, z2) = (p.mul(x, x), p.mul(y, y), p.mul(z, z));
     let (x4, y4, z4) = (p.mul(x2, x2), p.mul(y2, y2), p.mul(z2, z2));
     let x2z2 = p.mul(x2, z2);
     let x4z4 = p.add(x4, z4);
     let rho2 = p.add(x2, z2);
-    let rho4 = p.mul(rho2, rho2);
-    let rho7 = p.mul(rho2, p.mul(rho4, p.sqrt(rho2)));
-    // On the axis (rho = 0) a = atan2(0, 0) = 0 and sin b = 0: x and z are 0, not 0 * inf.
-    // So they are within 8 rho r^7 of it, where rho^7 underflows (rho < 4e-6): its
-    // reciprocal would be infinite, and the step NaN.
-    let k2 = p.select(
-        p.ge(rho7, p.splat(f32::MIN_POSITIVE)),
-        p.div(p.splat(1.0), rho7),
-        p.splat(0.0),
-    );
-    let six_y2_rho2 = p.mul(p.splat(-6.0), p.mul(y2, rho2));
+    // k2 = (1/rho)^7. Outside [RHO2_MIN, RHO2_MAX] it is 0: on the axis (rho = 0) a =
+    // atan2(0, 0) = 0 and sin b = 0, so x' and z' are 0, not 0 * inf, and within 8 rho r^7
+    // of it rho^7 underflows (rho < 4e-6); far out rho^-7 underflows. The clamp keeps the
+    // lanes that are not used normal: a subnormal product costs a microcode assist.
+    let r = p.rsqrt(p.min(rho2, p.splat(RHO2_MAX)));
+    let r2 = p.mul(r, r);
+    let r7 = p.mul(p.mul(r2, r2), p.mul(r2, r));
+    let normal = p.and(p.ge(rho2, p.splat(RHO2_MIN)), p.le(rho2, p.splat(RHO2_MAX)));
+    let k2 = p.select(normal, r7, p.splat(0.0));
     let k1 = p.add(
         x4z4,
-        p.add(y4, p.add(six_y2_rho2, p.mul(p.splat(2.0), x2z2))),
+        p.add(y4, p.fma(p.mul(p.splat(-6.0), y2), rho2, p.add(x2z2, x2z2))),
     );
-    let k4 = p.add(p.sub(x2, y2), z2);
-    let k12 = p.mul(k1, k2);
-    let ax = p.add(x4, p.add(p.mul(p.splat(-6.0), x2z2), z4));
-    let nx = p.mul(
-        p.splat(64.0),
-        p.mul(
-            x,
-            p.mul(y, p.mul(z, p.mul(p.sub(x2, z2), p.mul(k4, p.mul(ax, k12))))),
-        ),
+    let k4 = p.sub(rho2, y2);
+    let k14 = p.mul(k1, k4);
+    let ax = p.add(x4, p.fma(p.splat(-6.0), x2z2, z4));
+    let tx = p.mul(
+        p.mul(p.mul(x, y), p.mul(z, p.sub(x2, z2))),
+        p.mul(p.mul(p.splat(64.0), ax), k14),
     );
-    let az = p.add(
-        p.mul(p.splat(28.0), p.mul(x2z2, x4z4)),
-        p.sub(
-            p.mul(p.sub(p.mul(p.splat(-70.0), x4), z4), z4),
-            p.mul(x4, x4),
-        ),
+    // -az = (70 x^4 + z^4) z^4 + x^8 - 28 x^2 z^2 (x^4 + z^4).
+    let neg_az = p.fnma(
+        p.mul(p.splat(28.0), x2z2),
+        x4z4,
+        p.fma(p.fma(p.splat(70.0), x4, z4), z4, p.mul(x4, x4)),
     );
-    let nz = p.mul(p.splat(8.0), p.mul(y, p.mul(k4, p.mul(az, k12))));
-    let ny = p.add(
-        p.mul(p.mul(p.mul(p.mul(p.splat(-16.0), y2), rho2), k4), k4),
-        p.mul(k1, k1),
-    );
+    let tz = p.mul(p.mul(p.splat(-8.0), y), p.mul(neg_az, k14));
+    let ty = p.fma(p.mul(p.mul(p.splat(-16.0), y2), rho2), p.mul(k4, k4), c.y);
     V3 {
-        x: nx,
-        y: ny,
-        z: nz,
+        x: p.fma(tx, k2, c.x),
+        y: p.fma(k1, k1, ty),
+        z: p.fma(tz, k2, c.z),
     }
 }
 
@@ -260,7 +262,7 @@ mod tests {
         [r8 * b.sin() * a.sin(), r8 * b.cos(), r8 * b.sin() * a.cos()]
     }
 
-    /// The trig-free form of [`bulb8`] (the same complex squarings), in f64.
+    /// The trig-free form of [`bulb8_plus`] (the same complex squarings), in f64.
     fn bulb8_f64(w: [f64; 3]) -> [f64; 3] {
         let rho2 = w[0] * w[0] + w[2] * w[2];
         let rho = rho2.sqrt();
@@ -301,13 +303,14 @@ mod tests {
     fn lane_bulb_step_follows_the_f64_form() {
         for w in points() {
             let b = bulb8_f64(w);
-            let v = bulb8(
+            let v = bulb8_plus(
                 Scalar,
                 V3 {
                     x: w[0] as f32,
                     y: w[1] as f32,
                     z: w[2] as f32,
                 },
+                V3::splat(Scalar, glam::Vec3::ZERO),
             );
             let r8 = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).powi(4);
             for (got, want) in [v.x, v.y, v.z].into_iter().zip(b) {
@@ -431,17 +434,51 @@ mod tests {
         assert!(FarBound::mandelbulb(glam::Vec3::ZERO, 4, 256.0, 0.0).is_none());
     }
 
+    /// [`bulb8_plus`] on a backend, at points as f32, with `c = 0`.
+    struct Steps<'a>(&'a [[f32; 3]]);
+
+    impl PackKernel for Steps<'_> {
+        type Output = Vec<[f32; 3]>;
+        fn run<P: Pack>(self, p: P) -> Vec<[f32; 3]> {
+            self.0
+                .iter()
+                .map(|w| {
+                    let v = bulb8_plus(
+                        p,
+                        V3::splat(p, glam::Vec3::from_array(*w)),
+                        V3::splat(p, glam::Vec3::ZERO),
+                    );
+                    let mut out = [[0.0f32; crate::cpu::lanes::MAX_WIDTH]; 3];
+                    for (k, lane) in [v.x, v.y, v.z].into_iter().enumerate() {
+                        p.store(lane, &mut out[k]);
+                    }
+                    [out[0][0], out[1][0], out[2][0]]
+                })
+                .collect()
+        }
+    }
+
     #[test]
-    fn bulb_step_on_the_axis_is_finite() {
-        let v = bulb8(
-            Scalar,
-            V3 {
-                x: 0.0,
-                y: 0.5,
-                z: 0.0,
-            },
-        );
-        assert_eq!((v.x, v.y, v.z), (0.0, 0.5f32.powi(8), 0.0));
+    fn bulb_step_on_and_near_the_axis_is_finite_on_every_backend() {
+        // On the axis, where rho^7 underflows, and just past that: the estimate of
+        // 1/rho there is infinite or huge, and x' and z' must still be (near) 0.
+        let points = [[0.0, 0.5, 0.0], [1e-7, 0.5, -1e-7], [-4e-6, 0.7, 2e-6]];
+        for backend in crate::simd::TRACER_BACKENDS {
+            let Ok(got) = crate::simd::run(backend, Steps(&points)) else {
+                continue;
+            };
+            for (w, v) in points.iter().zip(&got) {
+                let want = bulb8_f64(w.map(f64::from));
+                for (g, e) in v.iter().zip(want) {
+                    assert!(
+                        g.is_finite() && (f64::from(*g) - e).abs() <= 1e-6,
+                        "{backend} at {w:?}: {v:?} vs {want:?}"
+                    );
+                }
+            }
+            assert_eq!(got[0], [0.0, 0.5f32.powi(8), 0.0], "{backend} on the axis");
+            assert_eq!([got[1][0], got[1][2]], [0.0, 0.0], "{backend} next to it");
+        }
     }
 
     #[test]
