@@ -207,28 +207,40 @@ fn guard_distance(p: vec3<f32>, centre: vec3<f32>, half: vec3<f32>) -> f32 {
 
 // One power-8 Mandelbulb step without trigonometry: `w^8 + c` of the spherical form
 // `r^8 (sin b sin a, cos b, sin b cos a)`, `b = 8 acos(w.y / r)`, `a = 8 atan2(w.x, w.z)`.
-fn bulb8(w: vec3<f32>) -> vec3<f32> {
+// The same operations as the CPU tracer's (cpu/prims.rs `bulb8_plus`, which derives the
+// polynomials): `k2 = rho^-7` from the reciprocal square root enters each product last,
+// and sums after products are fused. On (or, where rho^7 underflows, within 8 rho r^7 of)
+// the axis, x and z are 0: not 0 * inf, which is NaN; far out `k2` is 0 too.
+const RHO2_MIN: f32 = 1.4551915e-11; // 2^-36
+const RHO2_MAX: f32 = 34359738368.0; // 2^35
+
+fn bulb8_plus(w: vec3<f32>, c: vec3<f32>) -> vec3<f32> {
     let x = w.x;
-    let x2 = x * x;
-    let x4 = x2 * x2;
     let y = w.y;
-    let y2 = y * y;
-    let y4 = y2 * y2;
     let z = w.z;
+    let x2 = x * x;
+    let y2 = y * y;
     let z2 = z * z;
+    let x4 = x2 * x2;
+    let y4 = y2 * y2;
     let z4 = z2 * z2;
-    let k3 = x2 + z2;
-    // On (or, where rho^7 underflows, within 8 rho r^7 of) the axis, x and z are 0: not
-    // 0 * inf, which is NaN (cpu/prims.rs `bulb8_plus` does the same).
-    let k7 = k3 * k3 * k3 * k3 * k3 * k3 * k3;
-    let k2 = select(0.0, inverseSqrt(k7), k7 >= 1.17549435e-38);
-    let k1 = x4 + y4 + z4 - 6.0 * y2 * z2 - 6.0 * x2 * y2 + 2.0 * z2 * x2;
-    let k4 = x2 - y2 + z2;
-    return vec3<f32>(
-        64.0 * x * y * z * (x2 - z2) * k4 * (x4 - 6.0 * x2 * z2 + z4) * k1 * k2,
-        -16.0 * y2 * k3 * k4 * k4 + k1 * k1,
-        -8.0 * y * k4 * (x4 * x4 - 28.0 * x4 * x2 * z2 + 70.0 * x4 * z4 - 28.0 * x2 * z2 * z4 + z4 * z4) * k1 * k2,
-    );
+    let x2z2 = x2 * z2;
+    let x4z4 = x4 + z4;
+    let rho2 = x2 + z2;
+    let r = inverseSqrt(min(rho2, RHO2_MAX));
+    let r2 = r * r;
+    let r7 = (r2 * r2) * (r2 * r);
+    let k2 = select(0.0, r7, rho2 >= RHO2_MIN && rho2 <= RHO2_MAX);
+    let k1 = x4z4 + (y4 + fma(-6.0 * y2, rho2, x2z2 + x2z2));
+    let k4 = rho2 - y2;
+    let k14 = k1 * k4;
+    let ax = x4 + fma(-6.0, x2z2, z4);
+    let tx = ((x * y) * (z * (x2 - z2))) * ((64.0 * ax) * k14);
+    // -az = (70 x^4 + z^4) z^4 + x^8 - 28 x^2 z^2 (x^4 + z^4).
+    let neg_az = fma(-(28.0 * x2z2), x4z4, fma(fma(70.0, x4, z4), z4, x4 * x4));
+    let tz = (-8.0 * y) * (neg_az * k14);
+    let ty = fma((-16.0 * y2) * rho2, k4 * k4, c.y);
+    return vec3<f32>(fma(tx, k2, c.x), fma(k1, k1, ty), fma(tz, k2, c.z));
 }
 
 fn sd_mandelbulb(p: vec3<f32>, centre: vec3<f32>, iterations: u32, bailout: f32, derivative: f32) -> f32 {
@@ -237,8 +249,8 @@ fn sd_mandelbulb(p: vec3<f32>, centre: vec3<f32>, iterations: u32, bailout: f32,
     var m = dot(w, w);
     var dz = derivative;
     for (var i = 0u; i < iterations; i++) {
-        dz = 8.0 * (m * m * m * sqrt(m)) * dz + 1.0;
-        w = c + bulb8(w);
+        dz = fma(8.0, m * m * m * sqrt(m) * dz, 1.0);
+        w = bulb8_plus(w, c);
         m = dot(w, w);
         if (m > bailout) {
             break;

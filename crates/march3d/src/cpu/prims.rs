@@ -191,7 +191,8 @@ const RHO2_MAX: f32 = (1u64 << 35) as f32;
 /// and enters each product last (everything else is ready while it is computed), and
 /// multiply-adds fuse where a sum follows a product. That rounds differently from the
 /// reference renderer's order of operations; the pictures stay within its FLIP bound
-/// (`tests/march3d_views`).
+/// (`tests/march3d_views`). The GPU marcher's `bulb8_plus` (`shaders/march3d.wgsl`) has
+/// the same operations.
 #[inline(always)]
 pub(crate) fn bulb8_plus<P: Pack>(p: P, w: V3<P>, c: V3<P>) -> V3<P> {
     let (x, y, z) = (w.x, w.y, w.z);
