@@ -8,8 +8,9 @@
 //!    With `--reference BIN` (repeatable), the reference renderer's binaries run on the same
 //!    scenes in the same run (`bench_reference3d`), in rounds with ours (one frame of every
 //!    configuration per round, so that a slow spell of a shared machine falls on all of
-//!    them), and each row shows the fastest one's time over ours. The FLIP of our pictures against the reference's vendored pictures
-//!    (and against each binary's output) is printed.
+//!    them), and each row shows the fastest one's time over ours. The FLIP of our pictures
+//!    against the reference's vendored pictures (and against each binary's output) is
+//!    printed.
 //! 2. The forest world: SDF evaluations and march steps per pixel (counting backend) and
 //!    GPU frame time with every emitter optimization on, all off (naive), and each one off,
 //!    plus the visual difference of the optimized render against the naive one.

@@ -203,12 +203,19 @@ fn beaten<P: Pack>(p: P, node: &NodeC, q: V3<P>, d: P::F, active: P::M) -> bool 
     };
     let r2 = q.sub_c(p, far.centre).len2(p);
     let r = p.sqrt(r2);
-    let line = |(slope, offset): (f32, f32)| p.fma(p.splat(slope), r, p.splat(offset));
     let bound = far.lines[1..]
         .iter()
-        .fold(line(far.lines[0]), |b, &l| p.max(b, line(l)));
+        .fold(line_at(p, far.lines[0], r), |b, &l| {
+            p.max(b, line_at(p, l, r))
+        });
     let beaten = p.and(p.ge(r2, p.splat(far.radius2)), p.lt(d, bound));
     !p.any(p.and_not(active, beaten))
+}
+
+/// `slope * r + offset` (a function, not a closure, for the reason of `V3::dot_row`).
+#[inline(always)]
+fn line_at<P: Pack>(p: P, (slope, offset): (f32, f32), r: P::F) -> P::F {
+    p.fma(p.splat(slope), r, p.splat(offset))
 }
 
 /// One node's distance at `q` (world space).

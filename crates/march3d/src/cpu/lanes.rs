@@ -161,22 +161,23 @@ impl<P: Pack> V3<P> {
     /// `m * self` for a row-major 3x3 matrix.
     #[inline(always)]
     pub(super) fn rotate(self, p: P, m: &[f32; 9]) -> Self {
-        let row = |r: usize| {
-            p.fma(
-                self.x,
-                p.splat(m[3 * r]),
-                p.fma(
-                    self.y,
-                    p.splat(m[3 * r + 1]),
-                    p.mul(self.z, p.splat(m[3 * r + 2])),
-                ),
-            )
-        };
         V3 {
-            x: row(0),
-            y: row(1),
-            z: row(2),
+            x: self.dot_row(p, &m[0..3]),
+            y: self.dot_row(p, &m[3..6]),
+            z: self.dot_row(p, &m[6..9]),
         }
+    }
+
+    /// `row . self`, as [`V3::rotate`] rounds it. A function, not a closure: a closure may
+    /// be compiled out of line, without the backend's instruction set (the rotation's was,
+    /// and each row called `_mm512_set1_ps` through memory).
+    #[inline(always)]
+    fn dot_row(self, p: P, row: &[f32]) -> P::F {
+        p.fma(
+            self.x,
+            p.splat(row[0]),
+            p.fma(self.y, p.splat(row[1]), p.mul(self.z, p.splat(row[2]))),
+        )
     }
 
     /// The mirror direction of `self` about the unit normal `n`.
