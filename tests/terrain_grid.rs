@@ -59,7 +59,7 @@ fn opts(cap: usize, res: u32) -> TerrainOptions {
         band: 16.0,
         cell_cap: cap,
         // Every waiting list bakes at the next advance: these tests check exactness.
-        bakes_per_tick: 1 << 16,
+        bake_rows_per_tick: 1 << 16,
         max_cell_events: cap.max(1 << 16),
         brick_resolution: res,
         max_event_radius: 128.0,
@@ -372,14 +372,15 @@ fn unbakeable_events_cannot_grow_a_cell_past_its_limit() {
 }
 
 /// No insert pays for a bake until a list reaches twice the cap: lists past the cap wait
-/// for the tick to advance, which bakes at most `bakes_per_tick` cells per tick advanced.
+/// for the tick to advance, which bakes `bake_rows_per_tick` lattice rows per tick advanced
+/// (here a third of a brick's 9 rows, as many again for every 4 waiting lists).
 /// Meanwhile the waiting cells answer exactly (bitwise the brute force), and the same
 /// events at the same ticks give the same bits.
 #[test]
 fn bakes_wait_for_the_tick_and_pending_cells_stay_exact() {
     let o = TerrainOptions {
         cell_cap: 8,
-        bakes_per_tick: 2,
+        bake_rows_per_tick: 3,
         ..opts(8, 8)
     };
     let run = || {
@@ -412,14 +413,22 @@ fn bakes_wait_for_the_tick_and_pending_cells_stay_exact() {
     for &p in &lattice {
         assert_same(t.sample(p), t.sample_brute_force(p), p);
     }
-    // Each advance bakes at most its budget, until nothing waits.
+    // Each advance bakes its rows (a third of a brick, once more for every 4 waiting
+    // lists), until nothing waits.
     let mut advances = 0;
+    let (first, mut rows) = (t.stats().bakes, 0);
     while t.stats().over_cap_cells > 0 {
-        let before = t.stats().bakes;
+        rows += 3 * t.stats().over_cap_cells.div_ceil(4) as u64;
         t.set_tick(t.tick() + 1).unwrap();
-        assert!(t.stats().bakes - before <= 2, "{:?}", t.stats());
+        let bakes = t.stats().bakes - first;
+        assert!(bakes * 9 <= rows, "{bakes} bricks of 9 rows in {rows} rows");
         advances += 1;
         assert!(advances < 100, "{:?}", t.stats());
+        for &p in lattice.iter().step_by(7) {
+            if t.cell_state(p).is_some_and(|s| s.brick().is_none()) {
+                assert_same(t.sample(p), t.sample_brute_force(p), p);
+            }
+        }
     }
     assert!(advances > 1, "{advances}");
     assert!(t.stats().max_cell_events <= 8, "{:?}", t.stats());
@@ -444,6 +453,144 @@ fn bakes_wait_for_the_tick_and_pending_cells_stay_exact() {
             first.distance(p).to_bits(),
             "{p}"
         );
+    }
+}
+
+/// Options whose bricks (9 x 9 samples) bake `rows` lattice rows per tick advance.
+fn slow_bake_opts(rows: usize) -> TerrainOptions {
+    TerrainOptions {
+        cell_cap: 8,
+        bake_rows_per_tick: rows,
+        ..opts(8, 8)
+    }
+}
+
+/// A terrain with rollback on whose lists run past the cap of 8.
+fn over_cap_terrain(rows: usize) -> Terrain<TestBase> {
+    let mut t = terrain(hills(), slow_bake_opts(rows));
+    t.enable_rollback();
+    for k in 0..15u32 {
+        let at = Vec2::new(-30.0 + 4.0 * k as f32, 5.0 * (k % 3) as f32);
+        t.apply(Event::carve(at, 40.0).unwrap()).unwrap();
+    }
+    t
+}
+
+/// Applies `n` carves of stream `seed`, one per tick advance.
+fn carve_and_advance(t: &mut Terrain<TestBase>, seed: u64, n: usize) {
+    let mut rng = Rng(seed);
+    for _ in 0..n {
+        let at = Vec2::new(rng.range(-60.0, 60.0), rng.range(-20.0, 20.0));
+        let r = rng.range(10.0, 40.0);
+        t.apply(Event::carve(at, r).unwrap()).unwrap();
+        t.set_tick(t.tick() + 1).unwrap();
+    }
+}
+
+fn distance_bits<F: Sdf>(t: &Terrain<F>) -> Vec<u32> {
+    (0..6400)
+        .map(|i| {
+            let p = Vec2::new(
+                -190.0 + (i % 80) as f32 * 4.75,
+                -190.0 + (i / 80) as f32 * 4.75,
+            );
+            t.distance(p).to_bits()
+        })
+        .collect()
+}
+
+/// The partial bake of `t`'s state, as the state's JSON has it.
+fn partial_bake(t: &Terrain<TestBase>) -> serde_json::Value {
+    serde_json::to_value(t.state()).unwrap()["baking"].clone()
+}
+
+/// A bake spread over several advances installs, once its last row is baked, the brick a
+/// bake in one advance installs: the same samples, the same field.
+#[test]
+fn a_bake_spread_over_ticks_installs_the_brick_a_whole_bake_would() {
+    let mut slow = over_cap_terrain(2);
+    let mut whole = over_cap_terrain(1 << 16);
+    whole.set_tick(1).unwrap();
+    assert_eq!(whole.stats().over_cap_cells, 0, "{:?}", whole.stats());
+    let mut advances = 0;
+    while slow.stats().over_cap_cells > 0 {
+        slow.set_tick(slow.tick() + 1).unwrap();
+        advances += 1;
+        assert!(advances < 100, "{:?}", slow.stats());
+    }
+    assert!(advances >= 5, "9 rows at 2 a tick: {advances}");
+    assert!(whole.stats().bakes > 1, "{:?}", whole.stats());
+    assert_eq!(slow.stats().bakes, whole.stats().bakes);
+    assert!(bricks(&slow) == bricks(&whole), "the same bricks");
+    assert!(
+        distance_bits(&slow) == distance_bits(&whole),
+        "the same field"
+    );
+}
+
+/// A partial bake continues exactly after a rollback to a mark taken while it was under
+/// way (the timeline rolled back had finished it and started others), and after its state
+/// was restored into a fresh terrain: every later tick gives the bits of a run that did
+/// neither.
+#[test]
+fn rollbacks_and_restored_states_continue_a_partial_bake_exactly() {
+    let mut reference = over_cap_terrain(3);
+    reference.set_tick(1).unwrap();
+    assert!(!partial_bake(&reference).is_null(), "a bake is under way");
+    let mut rolled = reference.clone();
+    let mark = rolled.mark().unwrap();
+    carve_and_advance(&mut rolled, 7, 12);
+    assert!(rolled.stats().bakes > 0, "{:?}", rolled.stats());
+    rolled.rollback(&mark).unwrap();
+    assert!(
+        rolled.state() == reference.state(),
+        "the rollback restores the bake"
+    );
+    let mut restored = terrain(hills(), slow_bake_opts(3));
+    restored.restore_state(&reference.state()).unwrap();
+    assert!(
+        restored.state() == reference.state(),
+        "the restore keeps the bake"
+    );
+    for t in [&mut reference, &mut rolled, &mut restored] {
+        carve_and_advance(t, 8, 12);
+    }
+    assert!(reference.stats().bakes > 1, "{:?}", reference.stats());
+    assert!(rolled.state() == reference.state(), "after the rollback");
+    assert!(restored.state() == reference.state(), "after the restore");
+    assert!(distance_bits(&rolled) == distance_bits(&reference));
+    assert!(distance_bits(&restored) == distance_bits(&reference));
+}
+
+/// A state whose partial bake does not fit its cells (a cell not over the cap, a prefix
+/// that is not a settled prefix of the list, as many rows as a brick has) is refused,
+/// naming it, and nothing changes.
+#[test]
+fn states_with_a_bad_partial_bake_are_refused() {
+    let mut t = over_cap_terrain(3);
+    t.set_tick(1).unwrap();
+    let good = serde_json::to_value(t.state()).unwrap();
+    let bake = good["baking"].as_array().unwrap().clone();
+    let (cell, prefix) = (bake[0].as_u64().unwrap(), bake[1].as_u64().unwrap());
+    let quiet = (0..t.grid().cell_count() as u64)
+        .find(|&c| t.grid().cell(c as usize).unwrap().events().is_empty())
+        .unwrap();
+    let cases = [
+        (serde_json::json!([quiet, 1, 0]), "cap"),
+        (serde_json::json!([cell, 0, 0]), "settled prefix"),
+        (serde_json::json!([cell, 10_000, 0]), "settled prefix"),
+        (serde_json::json!([cell, prefix, 9]), "9 rows of 9"),
+        (serde_json::json!([u32::MAX, 1, 0]), "cap"),
+    ];
+    let mut fresh = terrain(hills(), slow_bake_opts(3));
+    let before = (distance_bits(&fresh), fresh.stats());
+    for (value, words) in cases {
+        let mut v = good.clone();
+        v["baking"] = value.clone();
+        let state: craterfield::field2d::TerrainState = serde_json::from_value(v).unwrap();
+        let e = fresh.restore_state(&state).unwrap_err().to_string();
+        assert!(e.contains(words), "{value}: {e:?} should mention {words:?}");
+        assert!((distance_bits(&fresh), fresh.stats()) == before, "{value}");
     }
 }
 

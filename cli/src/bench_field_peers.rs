@@ -86,8 +86,8 @@ fn mops<T>(items: &[T], mut f: impl FnMut(&T) -> f32) -> f64 {
 }
 
 /// One explosion in its own tick, as a game's world applies it: the insert, then the
-/// tick's end, where lists past the cap are baked (`TerrainOptions::bakes_per_tick` at
-/// most). Returns both times, microseconds.
+/// tick's end, where lists past the cap are baked (`TerrainOptions::bake_rows_per_tick`
+/// lattice rows). Returns both times, microseconds.
 pub(crate) fn carve_timed(terrain: &mut Terrain<Graph>, b: &Blast) -> Result<(f64, f64), String> {
     let event = Event::carve(b.center, b.radius).map_err(|e| e.to_string())?;
     let t = Instant::now();
@@ -326,8 +326,8 @@ pub(crate) fn print(c: &Comparison) {
         );
     }
     println!(
-        "(tick end: the tick's bakes of lists past the cap, at most {} (TerrainOptions::bakes_per_tick); both: insert + tick end; swiss: the explosions placed anywhere inside the ground)",
-        craterfield::field2d::TerrainOptions::default().bakes_per_tick
+        "(tick end: the tick's bake work on lists past the cap, {} lattice rows of a brick's 33 (TerrainOptions::bake_rows_per_tick); both: insert + tick end; swiss: the explosions placed anywhere inside the ground)",
+        craterfield::field2d::TerrainOptions::default().bake_rows_per_tick
     );
     println!(
         "queries, M/s ({} points uniform in the level or within 16 units of the surface, {} rays of length 2000, and circles of radius 2 swept along them)",

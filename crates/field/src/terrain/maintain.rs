@@ -4,6 +4,8 @@
 //! terrain proves the listing and the pruning bitwise equal to the brute force, and bounds
 //! a brick's error.
 
+use std::ops::Range;
+
 use super::grid::{self, Brick, CellState, MaterialSource};
 use super::{Terrain, take_revision};
 use crate::event::{Event, EventKind};
@@ -48,6 +50,7 @@ impl<F: Sdf> Terrain<F> {
         let revisions = &mut self.next_revision;
         self.grid.restart(|| take_revision(revisions));
         self.over_cap.clear();
+        self.baking = None;
         for idx in 0..self.events.len() as u32 {
             self.insert(idx);
         }
@@ -104,14 +107,6 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
-    /// Whether `cell`'s list starts with a settled event (a bake would take a prefix).
-    pub(super) fn can_bake(&self, cell: usize) -> bool {
-        let first = self.grid.stored_cell(cell).and_then(|c| c.events.first());
-        first
-            .and_then(|&i| self.events.get(i as usize))
-            .is_some_and(|e| e.is_settled(self.tick))
-    }
-
     /// Cell reset and covered-event pruning for the event `idx` just appended to `cell`.
     pub(super) fn prune_new(&mut self, cell: usize, idx: u32, e: &Event) {
         if !(e.is_sharp() && e.is_settled(self.tick)) {
@@ -147,6 +142,7 @@ impl<F: Sdf> Terrain<F> {
                 }
             };
             if let Some(state) = new_state {
+                self.cancel_bake_of(cell);
                 self.grid.set_state(cell, state);
                 if let Some(c) = self.grid.edit_recorded_cell(cell) {
                     c.events.clear();
@@ -188,6 +184,10 @@ impl<F: Sdf> Terrain<F> {
                 break;
             }
         }
+        if !drop.is_empty() {
+            // The list before the new event changes: a bake of its prefix is stale.
+            self.cancel_bake_of(cell);
+        }
         let Some(c) = self.grid.edit_recorded_cell(cell) else {
             return;
         };
@@ -205,15 +205,11 @@ impl<F: Sdf> Terrain<F> {
         self.grid.count_pruned(pruned);
     }
 
-    /// The brick of `cell`'s state and its first `prefix` events: its field at the
-    /// `(n+1) x (n+1)` lattice, on the SIMD lanes where the base has tapes (the same bits
-    /// as the point path, which does it otherwise).
-    fn bake(&self, cell: usize, prefix: usize) -> Brick {
-        let n = self.grid.brick_resolution();
-        let points: Vec<_> = (0..=n)
-            .flat_map(|j| (0..=n).map(move |i| (i, j)))
-            .map(|(i, j)| self.grid.lattice_point(cell, i, j))
-            .collect();
+    /// Rows `rows` of the brick of `cell`'s state and its first `prefix` events: its field
+    /// at those rows of the `(n+1) x (n+1)` lattice, on the SIMD lanes where the base has
+    /// tapes (the same bits as the point path, which does it otherwise).
+    pub(super) fn bake_rows(&self, cell: usize, prefix: usize, rows: Range<u32>) -> Brick {
+        let points = self.grid.lattice_rows(cell, rows);
         let mut brick = Brick {
             values: vec![0.0; points.len()],
             materials: vec![0; points.len()],
@@ -233,34 +229,36 @@ impl<F: Sdf> Terrain<F> {
         brick
     }
 
-    /// Bakes the longest settled prefix of an over-long list into a brick.
-    pub(super) fn compact(&mut self, cell: usize) {
-        let cap = self.options.cell_cap;
+    /// How many listed events of `cell`, from the first, have settled (what a bake may
+    /// fold into a brick).
+    pub(super) fn settled_prefix(&self, cell: usize) -> usize {
         let Some(c) = self.grid.stored_cell(cell) else {
-            return;
+            return 0;
         };
-        if c.events.len() <= cap {
-            self.over_cap.remove(&cell);
-            return;
-        }
-        let prefix = c
-            .events
+        c.events
             .iter()
             .take_while(|&&i| {
                 self.events
                     .get(i as usize)
                     .is_some_and(|e| e.is_settled(self.tick))
             })
-            .count();
-        if prefix > 0 {
-            let brick = self.bake(cell, prefix);
-            let id = self.grid.store_brick(cell, brick);
-            self.grid.set_state(cell, CellState::Brick(id));
-            if let Some(c) = self.grid.edit_recorded_cell(cell) {
-                c.events.drain(..prefix.min(c.events.len()));
-            }
-            self.grid.count_bake();
+            .count()
+    }
+
+    /// Makes `brick` (of `cell`'s state and its first `prefix` events) the cell's state
+    /// and drops those events from its list, within a change of the cell already begun.
+    pub(super) fn install_brick(&mut self, cell: usize, prefix: usize, brick: Brick) {
+        let id = self.grid.store_brick(cell, brick);
+        self.grid.set_state(cell, CellState::Brick(id));
+        if let Some(c) = self.grid.edit_recorded_cell(cell) {
+            c.events.drain(..prefix.min(c.events.len()));
         }
+        self.grid.count_bake();
+    }
+
+    /// Keeps `cell` in the over-cap set exactly while its list is longer than the cap.
+    pub(super) fn update_over_cap(&mut self, cell: usize) {
+        let cap = self.options.cell_cap;
         if self
             .grid
             .stored_cell(cell)
@@ -270,5 +268,27 @@ impl<F: Sdf> Terrain<F> {
         } else {
             self.over_cap.remove(&cell);
         }
+    }
+
+    /// Bakes the longest settled prefix of an over-long list into a brick, at once (a list
+    /// that reached twice the cap), within a change of the cell already begun.
+    pub(super) fn compact(&mut self, cell: usize) {
+        self.cancel_bake_of(cell);
+        let cap = self.options.cell_cap;
+        if self
+            .grid
+            .stored_cell(cell)
+            .is_none_or(|c| c.events.len() <= cap)
+        {
+            self.over_cap.remove(&cell);
+            return;
+        }
+        let prefix = self.settled_prefix(cell);
+        if prefix > 0 {
+            let side = self.grid.brick_resolution() + 1;
+            let brick = self.bake_rows(cell, prefix, 0..side);
+            self.install_brick(cell, prefix, brick);
+        }
+        self.update_over_cap(cell);
     }
 }

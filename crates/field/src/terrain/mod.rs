@@ -49,10 +49,11 @@
 //!    carves keep the material. Fills are symmetric (with `min`); there the events between
 //!    must be sharp fills and all of them, `A` and `B` included, must share one material.
 //! 3. **Cap.** If a list is still longer than `cell_cap`, its longest settled prefix is baked
-//!    into a brick when the tick next advances (at most `bakes_per_tick` cells per
-//!    advance, in cell order, so no insert and no tick pays for many), or as the event is
-//!    applied once the list reaches twice the cap; until then queries apply the whole
-//!    list, exactly. The brick is the cell's field (state + prefix, clamped) sampled
+//!    into a brick at the following tick advances, `bake_rows_per_tick` lattice rows per
+//!    advance, cells in cell order (see `bake`: no insert pays for a bake, and no tick for
+//!    more than its rows), or whole as the event is applied once the list reaches twice
+//!    the cap; until the brick is installed queries apply the whole list, exactly. The
+//!    brick is the cell's field (state + prefix, clamped) sampled
 //!    exactly at an `(n+1) x (n+1)` lattice (spacing `h = cell_size / n`), values and
 //!    materials. Queries in a brick cell interpolate bilinearly (gradient of the
 //!    interpolant, material of the nearest lattice sample) and then apply the remaining
@@ -72,6 +73,7 @@
 //! gradient and the material of a brick cell are approximations. Each cell holds at most
 //! one brick, so brick memory is bounded by the cell count times `(n+1)^2` samples.
 
+mod bake;
 mod batch;
 mod cell_tapes;
 mod compact;
@@ -96,7 +98,7 @@ use super::sdf::Sdf;
 use cell_tapes::CellTapes;
 use craterfield_core::backend::Backend;
 pub use error::TerrainError;
-use grid::Cell;
+use grid::{Cell, PartialBake};
 pub use grid::{
     CellState, CellView, Grid, GridError, GridStats, MAX_BRICK_RESOLUTION, MAX_CELLS,
     MaterialSource, RollbackError, TerrainMark,
@@ -115,8 +117,10 @@ pub struct Terrain<F: Sdf> {
     tick: u32,
     events: Vec<Event>,
     grid: Grid,
-    /// Cells whose list exceeds the cap because unsettled events block baking.
+    /// Cells whose list exceeds the cap (they wait for a bake, or unsettled events block it).
     over_cap: BTreeSet<usize>,
+    /// The brick being baked at tick ends, a few rows per tick (see `bake`).
+    baking: Option<PartialBake>,
     /// The base's per-cell tapes, when the base is a tape program (a level graph).
     cell_tapes: Option<CellTapes>,
     /// The backend of batch queries.
@@ -150,6 +154,7 @@ impl<F: Sdf> Terrain<F> {
             events: Vec::new(),
             grid,
             over_cap: BTreeSet::new(),
+            baking: None,
             cell_tapes,
             backend: Backend::best(),
             next_revision: 1,
@@ -262,7 +267,7 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// Sets the current tick. Moving forwards bakes lists that wait past the cap
-    /// ([`TerrainOptions::bakes_per_tick`] cells per tick advanced); moving backwards
+    /// ([`TerrainOptions::bake_rows_per_tick`] lattice rows per tick advanced); moving backwards
     /// rebuilds the grid from the events (cost of a replay), which needs the whole
     /// history: once compaction has dropped events it is
     /// [`TerrainError::HistoryCompacted`] and nothing changes (roll back to a
@@ -276,29 +281,9 @@ impl<F: Sdf> Terrain<F> {
             self.grid.record_tick(self.tick);
             let advanced = (tick - self.tick) as usize;
             self.tick = tick;
-            self.bake_pending(self.options.bakes_per_tick.saturating_mul(advanced));
+            self.bake_pending(self.bake_budget(advanced));
         }
         Ok(())
-    }
-
-    /// Bakes lists past the cap that can bake (their first event has settled), in cell
-    /// order, at most `budget` of them ([`TerrainOptions::bakes_per_tick`] per tick
-    /// advanced); the rest wait for the next advance.
-    fn bake_pending(&mut self, mut budget: usize) {
-        let mut next = 0;
-        while budget > 0 {
-            let Some(cell) = self.over_cap.range(next..).next().copied() else {
-                break;
-            };
-            next = cell + 1;
-            if !self.can_bake(cell) {
-                continue;
-            }
-            self.begin_cell_change(cell);
-            self.over_cap.remove(&cell);
-            self.compact(cell);
-            budget -= 1;
-        }
     }
 
     /// A revision number never handed out before.

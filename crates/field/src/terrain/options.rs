@@ -15,15 +15,19 @@ pub struct TerrainOptions {
     pub cell_size: f32,
     /// The band `M`: distances are clamped to `[-M, M]`.
     pub band: f32,
-    /// Longest event list a cell keeps before baking a brick. A list past it is baked when
-    /// the tick next advances ([`Terrain::set_tick`](super::Terrain::set_tick)), at most
-    /// [`TerrainOptions::bakes_per_tick`] cells per advance, in cell order; only a list
-    /// that reaches twice the cap (or `max_cell_events`) bakes as its event is applied.
+    /// Longest event list a cell keeps before baking a brick. A list past it is baked at
+    /// the following tick advances ([`Terrain::set_tick`](super::Terrain::set_tick)),
+    /// [`TerrainOptions::bake_rows_per_tick`] lattice rows per advance, cells in cell
+    /// order; only a list that reaches twice the cap (or `max_cell_events`) bakes whole as
+    /// its event is applied.
     pub cell_cap: usize,
-    /// Cells over the cap baked per tick advance, so that one tick's cost stays bounded
-    /// (the rest wait for the next advance; their queries stay exact meanwhile).
-    #[serde(default = "default_bakes_per_tick")]
-    pub bakes_per_tick: usize,
+    /// Brick lattice rows baked per tick advance (a brick has `brick_resolution + 1`), so
+    /// that one tick's cost stays bounded whatever the bricks cost: a bake spreads over
+    /// several ticks, and lists wait their turn (their queries stay exact meanwhile). As
+    /// many again for every 4 lists waiting past the cap, so that a flood of explosions
+    /// does not pile them up.
+    #[serde(default = "default_bake_rows_per_tick")]
+    pub bake_rows_per_tick: usize,
     /// Longest event list a cell may hold at all. Lists past `cell_cap` bake their settled
     /// prefix, but a growing or not-yet-started event stops the prefix, and every event
     /// after it waits too; an event that would make a list longer than this is refused
@@ -52,7 +56,7 @@ impl Default for TerrainOptions {
             cell_size: 64.0,
             band: 32.0,
             cell_cap: 48,
-            bakes_per_tick: default_bakes_per_tick(),
+            bake_rows_per_tick: default_bake_rows_per_tick(),
             max_cell_events: default_max_cell_events(),
             brick_resolution: 32,
             max_event_radius: 512.0,
@@ -67,8 +71,8 @@ fn default_max_cell_events() -> usize {
     256
 }
 
-fn default_bakes_per_tick() -> usize {
-    2
+fn default_bake_rows_per_tick() -> usize {
+    7
 }
 
 fn check_positive(name: &'static str, value: f32, limit: f32) -> Result<(), TerrainError> {
@@ -122,9 +126,9 @@ impl TerrainOptions {
                 reason: "must be at least 1",
             });
         }
-        if self.bakes_per_tick == 0 {
+        if self.bake_rows_per_tick == 0 {
             return Err(TerrainError::BadOption {
-                name: "bakes_per_tick",
+                name: "bake_rows_per_tick",
                 value: "0".into(),
                 reason: "must be at least 1",
             });

@@ -1,6 +1,6 @@
 //! Rolling a terrain back: the public mark/rollback API over the undo journal the grid
 //! keeps, and the undoing of what the terrain holds outside the grid (the event log, the
-//! tick, the over-cap set).
+//! tick, the over-cap set, the partial bake).
 
 use super::Terrain;
 use super::grid::{Entry, RollbackError, TerrainMark};
@@ -26,6 +26,7 @@ impl<F: Sdf> Terrain<F> {
     /// A rebuild (moving the tick backwards with [`Terrain::set_tick`]) forgets the history.
     pub fn rollback(&mut self, mark: &TerrainMark) -> Result<(), RollbackError> {
         let (events, tick, over_cap) = (&mut self.events, &mut self.tick, &mut self.over_cap);
+        let baking = &mut self.baking;
         self.grid.rewind_to(mark, |entry| match *entry {
             Entry::Event => {
                 events.pop();
@@ -42,6 +43,14 @@ impl<F: Sdf> Terrain<F> {
                     over_cap.remove(&cell);
                 }
             }
+            Entry::BakeStarted => *baking = None,
+            Entry::BakeRows(len) => {
+                if let Some(b) = baking {
+                    b.rows.values.truncate(len);
+                    b.rows.materials.truncate(len);
+                }
+            }
+            Entry::BakeEnded(ref bake) => *baking = Some(bake.clone()),
             // The grid restores these itself.
             Entry::Brick { .. } | Entry::BrickPushed => {}
             Entry::FreePushed | Entry::FreePopped(_) => {}

@@ -5,7 +5,8 @@
 //! The state is the tick, the kept events, and every cell that is not a fresh `Base` cell
 //! with an empty list (its state, list and settle tick), the brick slots and the free list.
 //! What is derived is rebuilt on restore (which cells are over their cap, revisions, the
-//! per-cell tapes, the journal); none of it changes a query's bits. A restored terrain
+//! per-cell tapes, the journal, the samples of the partial bake from where it was); none
+//! of it changes a query's bits. A restored terrain
 //! answers every query, and takes every later event, exactly as the one it was taken from.
 //!
 //! A state may come from a stranger: [`Terrain::restore_state`] checks every index, size,
@@ -46,6 +47,9 @@ pub struct TerrainState {
     brick_materials: Vec<MaterialId>,
     free_bricks: Vec<u32>,
     counters: GridStats,
+    /// The partial bake (see `terrain::bake`): its cell, the listed events it folds in and
+    /// the lattice rows baked so far. The rows are baked again on restore.
+    baking: Option<(u32, u32, u32)>,
 }
 
 impl TerrainState {
@@ -142,6 +146,7 @@ impl<F: Sdf> Terrain<F> {
                 .collect(),
             free_bricks: free.to_vec(),
             counters: self.grid.counters(),
+            baking: self.baking_progress(),
         };
         for (i, c) in self.grid.stored_cells().iter().enumerate() {
             let fresh =
@@ -193,6 +198,10 @@ impl<F: Sdf> Terrain<F> {
         self.forgotten = state.forgotten;
         self.events.clone_from(&state.events);
         self.kept_after_compaction = self.events.len();
+        self.baking = None;
+        if let Some((cell, prefix, rows)) = state.baking {
+            self.resume_bake(cell as usize, prefix as usize, rows);
+        }
         Ok(())
     }
 
@@ -206,7 +215,44 @@ impl<F: Sdf> Terrain<F> {
         }
         check_shape(s)?;
         let owners = self.check_cells(s)?;
-        self.check_bricks(s, &owners)
+        self.check_bricks(s, &owners)?;
+        self.check_baking(s)
+    }
+
+    /// The partial bake names a cell over the cap, a prefix of settled events of its list
+    /// and fewer rows than a brick has.
+    fn check_baking(&self, s: &TerrainState) -> Result<(), TerrainError> {
+        let Some((at, prefix, rows)) = s.baking else {
+            return Ok(());
+        };
+        let list = s.cells().find(|c| c.0 == at).map_or(&[][..], |c| c.3);
+        if list.len() <= self.options.cell_cap {
+            return Err(bad(format!(
+                "the partial bake's cell {at} lists {} events, not more than the cap {}",
+                list.len(),
+                self.options.cell_cap
+            )));
+        }
+        let settled = list.get(..prefix as usize).is_some_and(|p| {
+            p.iter().all(|&i| {
+                s.events
+                    .get(i as usize)
+                    .is_some_and(|e| e.is_settled(s.tick))
+            })
+        });
+        if prefix == 0 || !settled {
+            return Err(bad(format!(
+                "the partial bake of cell {at} folds in {prefix} events, not a settled prefix of its {}",
+                list.len()
+            )));
+        }
+        let side = self.grid.brick_resolution() + 1;
+        if rows >= side {
+            return Err(bad(format!(
+                "the partial bake of cell {at} has {rows} rows of {side}"
+            )));
+        }
+        Ok(())
     }
 
     /// Cells: in range, ascending, lists ascending within the log and the per-cell limit,

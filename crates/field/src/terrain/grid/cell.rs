@@ -95,3 +95,14 @@ pub(crate) struct Brick {
     pub(in crate::terrain) values: Vec<f32>,
     pub(in crate::terrain) materials: Vec<MaterialId>,
 }
+
+/// A brick being baked a few lattice rows per tick: the cell, how many of its listed
+/// events (a settled prefix) it folds in, and the rows baked so far (the first rows of
+/// the brick's lattice). Invisible to queries until the last row is baked and the brick
+/// installed.
+#[derive(Clone, Debug)]
+pub(crate) struct PartialBake {
+    pub(in crate::terrain) cell: usize,
+    pub(in crate::terrain) prefix: usize,
+    pub(in crate::terrain) rows: Brick,
+}

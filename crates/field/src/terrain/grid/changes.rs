@@ -12,7 +12,7 @@
 //! same change without recording again (checked in debug builds).
 
 use super::journal::{Entry, Journal, RollbackError, TerrainMark};
-use super::{Brick, Cell, CellState, CellStateSlot, Grid, GridStats};
+use super::{Brick, Cell, CellState, CellStateSlot, Grid, GridStats, PartialBake};
 
 impl Grid {
     /// Starts keeping the undo journal (nothing changes when it is kept already).
@@ -97,7 +97,11 @@ impl Grid {
                 self.free_bricks.pop();
             }
             Entry::FreePopped(id) => self.free_bricks.push(id),
-            Entry::Event | Entry::Tick(_) => {}
+            Entry::Event
+            | Entry::Tick(_)
+            | Entry::BakeStarted
+            | Entry::BakeRows(_)
+            | Entry::BakeEnded(_) => {}
         }
     }
 
@@ -111,6 +115,24 @@ impl Grid {
     /// Records that the terrain appended an event to its log (an undo pops it).
     pub(in crate::terrain) fn record_event(&mut self) {
         self.record(Entry::Event);
+    }
+
+    /// Records that the terrain started a partial bake (an undo drops it).
+    pub(in crate::terrain) fn record_bake_started(&mut self) {
+        self.record(Entry::BakeStarted);
+    }
+
+    /// Records that the partial bake, holding `len` samples, takes more rows (an undo
+    /// truncates it back).
+    pub(in crate::terrain) fn record_bake_rows(&mut self, len: usize) {
+        self.record(Entry::BakeRows(len));
+    }
+
+    /// Records the partial bake the terrain installs or cancels (an undo puts it back).
+    pub(in crate::terrain) fn record_bake_ended(&mut self, bake: &PartialBake) {
+        if self.journal.is_some() {
+            self.record(Entry::BakeEnded(bake.clone()));
+        }
     }
 
     /// Records the tick `before` the terrain moves it forwards (an undo puts it back).

@@ -12,7 +12,8 @@
 //! cells change only when an event is inserted or a tick change bakes a list, so every
 //! change is recorded as the pre-image of what it touched: a cell (its state, list and
 //! over-cap flag), a brick slot, one step of the brick free list, an appended event, or the
-//! previous tick. Undoing the entries in reverse restores the exact bytes, bricks included,
+//! previous tick, or a step of the partial bake (see
+//! `terrain::bake`). Undoing the entries in reverse restores the exact bytes, bricks included,
 //! so a re-simulation after a rollback produces the same bits as a run that never rolled
 //! back.
 
@@ -21,7 +22,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use thiserror::Error;
 
-use super::cell::{Brick, Cell, GridStats};
+use super::cell::{Brick, Cell, GridStats, PartialBake};
 
 /// One pre-image.
 #[derive(Clone, Debug)]
@@ -44,6 +45,12 @@ pub(in crate::terrain) enum Entry {
     Event,
     /// The tick before a tick change.
     Tick(u32),
+    /// A partial bake was started (there was none).
+    BakeStarted,
+    /// Rows were appended to the partial bake, which held this many samples.
+    BakeRows(usize),
+    /// The partial bake was installed or cancelled: what it was.
+    BakeEnded(PartialBake),
 }
 
 /// A position in a terrain's history that [`crate::Terrain::rollback`] can return

@@ -20,7 +20,7 @@ mod cell;
 mod changes;
 mod journal;
 
-pub(crate) use cell::{Brick, Cell, CellStateSlot};
+pub(crate) use cell::{Brick, Cell, CellStateSlot, PartialBake};
 pub use cell::{CellState, GridStats, MaterialSource};
 pub(in crate::terrain) use journal::Entry;
 use journal::Journal;
@@ -299,11 +299,18 @@ impl Grid {
         self.cell_size / self.resolution as f32
     }
 
-    /// The lattice point `(i, j)` of cell `cell`.
-    pub(crate) fn lattice_point(&self, cell: usize, i: u32, j: u32) -> Vec2 {
+    /// The brick lattice points of rows `rows` of cell `cell`, row by row: point `(i, j)`
+    /// is `m + (i h, j h)` in `f32`, `m` the cell's corner and `h` the spacing.
+    pub(crate) fn lattice_rows(&self, cell: usize, rows: std::ops::Range<u32>) -> Vec<Vec2> {
         let m = self.cell_min_f32(cell);
         let h = self.brick_spacing();
-        Vec2::new(m.x + i as f32 * h, m.y + j as f32 * h)
+        let side = self.resolution + 1;
+        let mut points = Vec::with_capacity(rows.len() * side as usize);
+        for j in rows {
+            let y = m.y + j as f32 * h;
+            points.extend((0..side).map(|i| Vec2::new(m.x + i as f32 * h, y)));
+        }
+        points
     }
 
     /// Every brick slot (freed ones are empty) and the free list, for a state snapshot.
