@@ -125,7 +125,7 @@ impl<F: Sdf> Terrain<F> {
         let band = self.options.band;
         let (d0, mat0) = N::base(&self.base, p, true);
         let (mut d, mut mat) = (nclamp(d0, -band, band), mat0);
-        for e in &self.events {
+        for e in self.events.iter() {
             (d, mat) = apply_event(d, mat, pn, e, self.tick, self.options.band);
         }
         (d, mat)

@@ -79,6 +79,7 @@ mod cell_tapes;
 mod compact;
 mod error;
 mod eval;
+mod event_log;
 mod field;
 pub(crate) mod grid;
 mod limits;
@@ -98,6 +99,7 @@ use super::sdf::Sdf;
 use cell_tapes::CellTapes;
 use craterfield_core::backend::Backend;
 pub use error::TerrainError;
+use event_log::EventLog;
 use grid::{Cell, PartialBake};
 pub use grid::{
     CellState, CellView, Grid, GridError, GridStats, MAX_BRICK_RESOLUTION, MAX_CELLS,
@@ -115,7 +117,7 @@ pub struct Terrain<F: Sdf> {
     options: TerrainOptions,
     bounds: (Vec2, Vec2),
     tick: u32,
-    events: Vec<Event>,
+    events: EventLog,
     grid: Grid,
     /// Cells whose list exceeds the cap (they wait for a bake, or unsettled events block it).
     over_cap: BTreeSet<usize>,
@@ -151,7 +153,7 @@ impl<F: Sdf> Terrain<F> {
             options,
             bounds: (bounds_min, bounds_max),
             tick: 0,
-            events: Vec::new(),
+            events: EventLog::with_room(options.max_events),
             grid,
             over_cap: BTreeSet::new(),
             baking: None,

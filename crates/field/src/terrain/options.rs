@@ -43,6 +43,8 @@ pub struct TerrainOptions {
     pub max_rim: f32,
     /// Events the log holds before it is compacted (events no cell can reach any more
     /// are dropped; see [`Terrain::compact_history`](super::Terrain::compact_history)).
+    /// The log reserves room for this many (up to 2^20) when the terrain is made, so that
+    /// no event pays for growing it.
     /// Not a limit on a match's length: a terrain accepts events for as long as cells
     /// take them.
     pub max_events: usize,

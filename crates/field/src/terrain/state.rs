@@ -129,7 +129,7 @@ impl<F: Sdf> Terrain<F> {
         let mut st = TerrainState {
             tick: self.tick,
             forgotten: self.forgotten,
-            events: self.events.clone(),
+            events: self.events.to_vec(),
             cell_index: Vec::new(),
             cell_state: Vec::new(),
             cell_settled: Vec::new(),
@@ -196,7 +196,9 @@ impl<F: Sdf> Terrain<F> {
             .replace_contents(cells, bricks, state.free_bricks.clone(), state.counters);
         self.tick = state.tick;
         self.forgotten = state.forgotten;
-        self.events.clone_from(&state.events);
+        // Into the log's own room: a restore does not give up its reservation.
+        self.events.clear();
+        self.events.extend_from_slice(&state.events);
         self.kept_after_compaction = self.events.len();
         self.baking = None;
         if let Some((cell, prefix, rows)) = state.baking {
