@@ -1110,3 +1110,51 @@ fn cell_tapes_are_shared_and_bounded() {
     let bytes = terrain.cell_tape_bytes();
     assert!(bytes > 0 && bytes <= MAX_CELL_TAPE_BYTES, "{bytes}");
 }
+
+/// Cells in the air skip their lists where no fill was ever listed (the value stays at
+/// the band's top through carves): cells with fills, fills later covered by carves, and
+/// the same terrain restored from its state and rolled back all keep the brute force's
+/// bits.
+#[test]
+fn air_cells_skip_carve_only_lists_and_keep_every_bit() {
+    let mut t = terrain(hills(), opts(1 << 10, 8));
+    t.enable_rollback();
+    let mut rng = Rng(0x0a1e);
+    let mark = {
+        // Carves high in the air, then a fill there and carves over it.
+        for _ in 0..40 {
+            let c = Vec2::new(rng.range(-180.0, 180.0), rng.range(70.0, 190.0));
+            t.apply(Event::carve(c, rng.range(5.0, 40.0)).unwrap())
+                .unwrap();
+        }
+        let mark = t.mark().unwrap();
+        t.apply(Event::fill(Vec2::new(0.0, 140.0), 30.0, 5).unwrap())
+            .unwrap();
+        for _ in 0..10 {
+            let c = Vec2::new(rng.range(-60.0, 60.0), rng.range(100.0, 180.0));
+            t.apply(Event::carve(c, rng.range(5.0, 20.0)).unwrap())
+                .unwrap();
+        }
+        mark
+    };
+    let mut restored = terrain(hills(), opts(1 << 10, 8));
+    restored.restore_state(&t.state()).unwrap();
+    let mut rolled = t.clone();
+    rolled.rollback(&mark).unwrap();
+    for (name, terrain) in [
+        ("applied", &t),
+        ("restored", &restored),
+        ("rolled back", &rolled),
+    ] {
+        let mut checked = 0;
+        for j in 0..120 {
+            for i in 0..120 {
+                let p = Vec2::new(-198.0 + i as f32 * 3.3, 30.0 + j as f32 * 1.4);
+                let (a, b) = (terrain.distance(p), terrain.distance_brute_force(p));
+                assert_eq!(a.to_bits(), b.to_bits(), "{name}: {a} against {b} at {p}");
+                checked += usize::from(a < 16.0);
+            }
+        }
+        assert!(checked > 500, "{name}: only {checked} points below the top");
+    }
+}

@@ -93,11 +93,16 @@ impl<F: Sdf> Terrain<F> {
                 (N::constant(m), mat)
             }
             CellState::Solid(mat) => (N::constant(-m), mat),
-            CellState::Brick(id) => match self.grid.interpolate(id, cell, pn) {
+            CellState::Brick(id) => match self.grid.interpolate(id, cell, pn, N::MATERIAL || MAT) {
                 Some(x) => x,
                 None => self.base_clamped::<N, MAT>(p, Some(cell)),
             },
         };
+        if !c.may_fill && d.is_top(m) {
+            // Only carves follow, and each leaves the top as it is (`apply_unless_top`):
+            // the list need not be read, which spares a sky cell its events' cache misses.
+            return (d, mat);
+        }
         for &i in c.events.iter().take(upto) {
             if let Some(e) = self.events.get(i as usize) {
                 (d, mat) = apply_unless_top(d, mat, pn, e, self.tick, m);

@@ -84,6 +84,7 @@ impl<F: Sdf> Terrain<F> {
         for cell in self.cells_of(&e) {
             if let Some(c) = self.begin_cell_change(cell) {
                 c.events.push(idx);
+                c.may_fill |= e.kind == EventKind::Fill;
                 c.settled_at = c.settled_at.max(settled_at);
             }
             self.prune_new(cell, idx, &e);
@@ -146,6 +147,7 @@ impl<F: Sdf> Terrain<F> {
                 self.grid.set_state(cell, state);
                 if let Some(c) = self.grid.edit_recorded_cell(cell) {
                     c.events.clear();
+                    c.may_fill = false;
                 }
                 self.over_cap.remove(&cell);
                 self.grid.count_reset();

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 use super::Terrain;
 use super::error::TerrainError;
 use super::grid::{Brick, Cell, CellState, CellStateSlot, GridStats, MaterialSource};
-use crate::event::Event;
+use crate::event::{Event, EventKind};
 use crate::sample::MaterialId;
 use crate::sdf::Sdf;
 
@@ -170,10 +170,13 @@ impl<F: Sdf> Terrain<F> {
     pub fn restore_state(&mut self, state: &TerrainState) -> Result<(), TerrainError> {
         self.check_state(state)?;
         let mut cells = vec![Cell::default(); self.grid.cell_count()];
-        for (i, state, settled, list) in state.cells() {
+        for (i, cell_state, settled, list) in state.cells() {
             if let Some(c) = cells.get_mut(i as usize) {
-                c.state = CellStateSlot(state);
+                c.state = CellStateSlot(cell_state);
                 c.events = list.to_vec();
+                c.may_fill = list.iter().any(|&k| {
+                    (state.events.get(k as usize)).is_none_or(|e| e.kind == EventKind::Fill)
+                });
                 c.settled_at = settled;
             }
         }

@@ -77,6 +77,10 @@ pub(crate) struct Cell {
     /// The tick from which every listed event is settled (the field stops depending on the
     /// tick).
     pub(in crate::terrain) settled_at: u32,
+    /// Whether the list may hold a fill: set when one is listed, cleared only with the
+    /// list (a removal leaves it set, which costs a query its shortcut, never its bits).
+    /// Without a fill, a value at the band's top stays there through the whole list.
+    pub(in crate::terrain) may_fill: bool,
 }
 
 /// A `CellState` with a `Default` (Base).
