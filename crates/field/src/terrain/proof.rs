@@ -120,13 +120,15 @@ impl<F: Sdf> Terrain<F> {
             return false;
         };
         let start = self.proof_start(cell);
+        // A list that never held a fill (`may_fill`) holds carves only, unread.
         if let Start::Range(lo, _) = start
             && lo >= above
-            && c.events.iter().all(|&i| {
-                self.events
-                    .get(i as usize)
-                    .is_some_and(|e| e.kind == EventKind::Carve)
-            })
+            && (!c.may_fill
+                || c.events.iter().all(|&i| {
+                    self.events
+                        .get(i as usize)
+                        .is_some_and(|e| e.kind == EventKind::Carve)
+                }))
         {
             return true;
         }
