@@ -1112,9 +1112,9 @@ fn cell_tapes_are_shared_and_bounded() {
 }
 
 /// Cells in the air skip their lists where no fill was ever listed (the value stays at
-/// the band's top through carves): cells with fills, fills later covered by carves, and
-/// the same terrain restored from its state and rolled back all keep the brute force's
-/// bits.
+/// the band's top through carves), on the point path and in batches: cells with fills,
+/// fills later covered by carves, and the same terrain restored from its state and rolled
+/// back all keep the brute force's bits.
 #[test]
 fn air_cells_skip_carve_only_lists_and_keep_every_bit() {
     let mut t = terrain(hills(), opts(1 << 10, 8));
@@ -1146,14 +1146,26 @@ fn air_cells_skip_carve_only_lists_and_keep_every_bit() {
         ("restored", &restored),
         ("rolled back", &rolled),
     ] {
+        let points: Vec<Vec2> = (0..120 * 120)
+            .map(|k| {
+                Vec2::new(
+                    -198.0 + (k % 120) as f32 * 3.3,
+                    30.0 + (k / 120) as f32 * 1.4,
+                )
+            })
+            .collect();
+        let mut batch = vec![0.0; points.len()];
+        terrain.distances(&points, &mut batch).unwrap();
         let mut checked = 0;
-        for j in 0..120 {
-            for i in 0..120 {
-                let p = Vec2::new(-198.0 + i as f32 * 3.3, 30.0 + j as f32 * 1.4);
-                let (a, b) = (terrain.distance(p), terrain.distance_brute_force(p));
-                assert_eq!(a.to_bits(), b.to_bits(), "{name}: {a} against {b} at {p}");
-                checked += usize::from(a < 16.0);
-            }
+        for (&p, &c) in points.iter().zip(&batch) {
+            let (a, b) = (terrain.distance(p), terrain.distance_brute_force(p));
+            assert_eq!(a.to_bits(), b.to_bits(), "{name}: {a} against {b} at {p}");
+            assert_eq!(
+                c.to_bits(),
+                b.to_bits(),
+                "{name}, batch: {c} against {b} at {p}"
+            );
+            checked += usize::from(a < 16.0);
         }
         assert!(checked > 500, "{name}: only {checked} points below the top");
     }

@@ -110,6 +110,18 @@ enum Start<'a> {
     Brick(u32),
 }
 
+impl Start<'_> {
+    /// Whether every lane starts at exactly the band's top `+M`.
+    fn is_top(&self, band: f32) -> bool {
+        match self {
+            Start::Base(plan) => plan.clamped == Some(band),
+            Start::Constant(v, _) => *v == band,
+            Start::AirFromBase(_) | Start::AirFromBrick(_) => true,
+            Start::Brick(_) => false,
+        }
+    }
+}
+
 impl<F: Sdf> Terrain<F> {
     /// The backend of the batch queries and of brick baking (by default [`Backend::best`]).
     pub fn backend(&self) -> Backend {
@@ -278,6 +290,13 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
+    /// Whether `cell`'s list never held a fill since it was last cleared (see
+    /// `Cell::may_fill`): it holds carves only.
+    fn lists_carves_only(&self, cell: Option<usize>) -> bool {
+        cell.and_then(|c| self.grid.stored_cell(c))
+            .is_none_or(|c| !c.may_fill)
+    }
+
     /// The cell's events in order with their constants at the current tick (events not
     /// yet started are left out: they change nothing).
     fn prepared_events(&self, cell: Option<usize>, out: &mut Vec<Prepared>) {
@@ -380,6 +399,13 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
         let step = NB * L::WIDTH;
         for g in self.groups {
             let start = t.start(self.cell_tapes, g.cell, false);
+            if start.is_top(band) && t.lists_carves_only(g.cell) {
+                // Carves leave the band's top as it is: the list need not be read.
+                for &i in &self.order[g.start..g.end] {
+                    self.out[i as usize] = band;
+                }
+                continue;
+            }
             t.prepared_events(g.cell, &mut events);
             if events.is_empty() {
                 // A constant cell: no point is needed.
