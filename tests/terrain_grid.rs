@@ -1111,6 +1111,66 @@ fn cell_tapes_are_shared_and_bounded() {
     assert!(bytes > 0 && bytes <= MAX_CELL_TAPE_BYTES, "{bytes}");
 }
 
+/// `Terrain::prepare` builds every cell's tapes up front (bytes are counted before any
+/// query), does nothing more when called again, and changes no bit: a prepared terrain and
+/// one whose cells specialize on first use answer every query, and bake every brick, alike.
+#[test]
+fn prepare_builds_every_cell_tape_and_changes_no_bit() {
+    use craterfield::field2d::Level;
+    let level = Level::default_level();
+    let b = level.bounds();
+    // A short cap, so that lists bake.
+    let o = TerrainOptions {
+        cell_cap: 6,
+        ..level.terrain_options()
+    };
+    let new = || Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
+    let prepared = new();
+    assert_eq!(prepared.cell_tape_bytes(), 0, "nothing is built before use");
+    prepared.prepare();
+    let bytes = prepared.cell_tape_bytes();
+    assert!(bytes > 0, "prepare built no tape");
+    prepared.prepare();
+    assert_eq!(
+        prepared.cell_tape_bytes(),
+        bytes,
+        "a second prepare built more"
+    );
+
+    let mut prepared = prepared;
+    let mut lazy = new();
+    let mut rng = Rng(0x9e9a);
+    // Concentrated on the hills' surface, so that lists pass the cap and bake.
+    let mid = Vec2::new(400.0, 620.0);
+    for tick in 1..=160u32 {
+        let c = mid + Vec2::new(rng.range(-150.0, 150.0), rng.range(-150.0, 150.0));
+        let e = Event::carve(c, rng.range(8.0, 60.0)).unwrap();
+        for t in [&mut prepared, &mut lazy] {
+            t.apply(e).unwrap();
+            t.set_tick(tick).unwrap();
+        }
+    }
+    assert!(prepared.stats().bricks > 0, "the events baked no brick");
+    let pts: Vec<Vec2> = (0..4000)
+        .map(|i| {
+            if i % 2 == 0 {
+                Vec2::new(rng.range(b.min.x, b.max.x), rng.range(b.min.y, b.max.y))
+            } else {
+                mid + Vec2::new(rng.range(-220.0, 220.0), rng.range(-220.0, 220.0))
+            }
+        })
+        .collect();
+    for &p in &pts {
+        assert_same(prepared.sample(p), lazy.sample(p), p);
+    }
+    let (mut a, mut c) = (vec![0.0; pts.len()], vec![0.0; pts.len()]);
+    prepared.distances(&pts, &mut a).unwrap();
+    lazy.distances(&pts, &mut c).unwrap();
+    for (k, p) in pts.iter().enumerate() {
+        assert_eq!(a[k].to_bits(), c[k].to_bits(), "batch at {p}");
+    }
+}
+
 /// Cells in the air skip their lists where no fill was ever listed (the value stays at
 /// the band's top through carves), on the point path and in batches: cells with fills,
 /// fills later covered by carves, and the same terrain restored from its state and rolled

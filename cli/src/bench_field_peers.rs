@@ -65,6 +65,9 @@ pub(crate) struct Queries {
 pub(crate) struct Comparison {
     points: usize,
     rays: usize,
+    /// Milliseconds a fresh terrain's [`Terrain::prepare`] took, and its cells (every
+    /// terrain here is prepared before it is used, as at a level load).
+    prepare_ms: (f64, usize),
     inserts: Vec<(String, Inserts)>,
     queries: Vec<Queries>,
     /// One terrain after a million explosions (`bench_field_long`).
@@ -298,6 +301,7 @@ pub(crate) fn compare(points: usize, rays: usize) -> Result<Comparison, String> 
     Ok(Comparison {
         points,
         rays,
+        prepare_ms: field_scene::prepare_ms()?,
         inserts,
         queries,
         long_run,
@@ -328,6 +332,10 @@ pub(crate) fn print(c: &Comparison) {
     println!(
         "(tick end: the tick's bake work on lists past the cap, {} lattice rows of a brick's 33 (TerrainOptions::bake_rows_per_tick); both: insert + tick end; swiss: the explosions placed anywhere inside the ground)",
         craterfield::field2d::TerrainOptions::default().bake_rows_per_tick
+    );
+    println!(
+        "(every terrain prepared at load: Terrain::prepare built the {} cells' tapes in {:.1} ms)",
+        c.prepare_ms.1, c.prepare_ms.0
     );
     println!(
         "queries, M/s ({} points uniform in the level or within 16 units of the surface, {} rays of length 2000, and circles of radius 2 swept along them)",

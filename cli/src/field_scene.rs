@@ -50,8 +50,25 @@ pub(crate) fn ground_samples() -> Vec<Vec2> {
         .collect()
 }
 
-/// The level as a craterfield terrain (default options).
+/// The level as a craterfield terrain (default options), prepared as a game's level load
+/// would prepare it ([`Terrain::prepare`]: every cell's tapes built now, not inside the
+/// first tick that touches the cell).
 pub(crate) fn terrain() -> Result<Terrain<Graph>, String> {
+    let terrain = unprepared_terrain()?;
+    terrain.prepare();
+    Ok(terrain)
+}
+
+/// Milliseconds [`Terrain::prepare`] takes on a fresh terrain of the level, and the
+/// cells it prepares.
+pub(crate) fn prepare_ms() -> Result<(f64, usize), String> {
+    let terrain = unprepared_terrain()?;
+    let t = std::time::Instant::now();
+    terrain.prepare();
+    Ok((t.elapsed().as_secs_f64() * 1e3, terrain.grid().cell_count()))
+}
+
+fn unprepared_terrain() -> Result<Terrain<Graph>, String> {
     let mut parts = vec![Node::HeightProfile {
         x0: 0.0,
         dx: GROUND_STEP,

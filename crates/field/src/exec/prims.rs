@@ -286,6 +286,15 @@ pub(crate) fn height_profile<L: Lanes, V: Val<L>>(l: L, p: P2<V>, prm: Params<'_
     V::select(l, l.lt(py, ground), d.neg(l), d)
 }
 
+/// [`height_profile`] at one point, reading the parameter words in place: the
+/// specializer bounds a profile over each cell this way without copying a long profile's
+/// points per cell.
+pub(crate) fn height_profile_at(params: &[u32], p: Vec2) -> f32 {
+    use super::value::Fv;
+    use craterfield_core::simd::Scalar;
+    height_profile(Scalar, P2::new(Fv(p.x), Fv(p.y)), Params(params)).0
+}
+
 /// `primitives::ground_height` per lane.
 #[inline(always)]
 fn ground_height<L: Lanes>(

@@ -281,13 +281,8 @@ impl<'a> Specializer<'a> {
                 return prim_at(&|p| prim::polygon(pt(p.x, p.y), &pts, &inv));
             }
             Op::Height => {
-                let n = pu(0) as usize;
-                let dx = pf(1);
-                let pts: Vec<Vec2> = (0..n).map(|k| pv(2 + 2 * k)).collect();
-                let inv: Vec<f32> = (0..n.saturating_sub(1))
-                    .map(|k| pf(2 + 2 * n + k))
-                    .collect();
-                return prim_at(&|p| prim::height_profile(pt(p.x, p.y), &pts, dx, &inv));
+                let words = params.get(ins.imm as usize..).unwrap_or(&[]);
+                return prim_at(&|p| crate::exec::prims::height_profile_at(words, p));
             }
             // Lattice values are in [-1, 1) and the fade weights in [0, 1]; the sine
             // polynomial stays within 1 (tested); a little room for rounding.

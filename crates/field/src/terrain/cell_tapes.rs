@@ -55,10 +55,13 @@ impl CellTape {
 
     /// A hash of what [`CellTape::same_as`] compares.
     fn key(&self) -> u64 {
-        let mut h = std::collections::hash_map::DefaultHasher::new();
+        let mut h = WordHasher::default();
         for t in [&self.value, &self.material] {
             t.instrs.hash(&mut h);
-            t.params.hash(&mut h);
+            // Every 64th parameter word: regions of one program share most parameters
+            // (a long height profile's all), so the words add little to tell tapes apart.
+            t.params.len().hash(&mut h);
+            t.params.iter().step_by(64).for_each(|w| w.hash(&mut h));
             (t.registers, t.value, t.material).hash(&mut h);
         }
         self.clamped.map(f32::to_bits).hash(&mut h);
@@ -95,6 +98,37 @@ impl CellTape {
             clamped,
             range,
         }
+    }
+}
+
+/// A multiply-rotate hasher over 8-byte words for [`CellTape::key`]: the key only picks a
+/// bucket (equal tapes are confirmed by [`CellTape::same_as`]), so it needs speed, not
+/// resistance to chosen inputs. SipHash over a long height profile's parameters (12 KiB
+/// per tape) was most of the time a cell's specialization took.
+#[derive(Default)]
+struct WordHasher(u64);
+
+impl WordHasher {
+    fn add(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+impl Hasher for WordHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        let mut words = bytes.chunks_exact(8);
+        for w in &mut words {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(w);
+            self.add(u64::from_le_bytes(b));
+        }
+        for &b in words.remainder() {
+            self.add(u64::from(b));
+        }
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
     }
 }
 
@@ -209,6 +243,14 @@ impl CellTapes {
             for c in self.cells.iter_mut().chain(&mut self.halo.tiles) {
                 *c = OnceLock::new();
             }
+        }
+    }
+
+    /// Builds every cell's tapes now that is not built yet (each is otherwise built on
+    /// its cell's first use).
+    pub(super) fn build_all(&self, grid: &Grid) {
+        for cell in 0..self.cells.len() {
+            self.get(grid, Some(cell));
         }
     }
 
