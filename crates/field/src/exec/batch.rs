@@ -28,11 +28,18 @@ impl<L: Lanes, V: Val<L>, const NB: usize> Block<L, V, NB> {
     /// Runs the tape on up to `NB * WIDTH` points.
     #[inline(always)]
     pub(crate) fn run(&mut self, l: L, tape: &Tape, points: &[Vec2]) {
+        self.run_used(l, tape, points, NB);
+    }
+
+    /// Runs the tape on the first `used` lane registers of up to `NB * WIDTH` points
+    /// (a short block: the registers past the points would only repeat the last one).
+    #[inline(always)]
+    pub(crate) fn run_used(&mut self, l: L, tape: &Tape, points: &[Vec2], used: usize) {
         if self.regs.len() < tape.registers() {
             self.regs.resize(tape.registers(), [V::cst(l, 0.0); NB]);
         }
         load_points(l, points, &mut self.xs, &mut self.ys);
-        run_tape(l, tape, &mut self.regs, &self.xs, &self.ys);
+        run_tape(l, tape, &mut self.regs, &self.xs, &self.ys, used);
     }
 
     /// The value register `reg`'s lane register `r`.

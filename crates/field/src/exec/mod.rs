@@ -18,8 +18,9 @@ pub(crate) use self::value::{Dv, Fv, P2, Val};
 use crate::tape::{Op, Tape};
 use craterfield_core::simd::Lanes;
 
-/// Runs `tape` over one block of `NB` lane registers of points: `regs` holds at least
-/// `tape.registers()` registers. Results stay in the registers.
+/// Runs `tape` over the first `used` (at most `NB`) lane registers of a block of points:
+/// `regs` holds at least `tape.registers()` registers. Results stay in the registers; the
+/// lane registers past `used` keep whatever they held.
 #[inline(always)]
 pub(crate) fn run_tape<L: Lanes, V: Val<L>, const NB: usize>(
     l: L,
@@ -27,7 +28,9 @@ pub(crate) fn run_tape<L: Lanes, V: Val<L>, const NB: usize>(
     regs: &mut [[V; NB]],
     xs: &[L::F; NB],
     ys: &[L::F; NB],
+    used: usize,
 ) {
+    let used = used.min(NB);
     let prm = Params(&tape.params);
     for ins in &tape.instrs {
         let (d, a, b, c) = (
@@ -42,7 +45,7 @@ pub(crate) fn run_tape<L: Lanes, V: Val<L>, const NB: usize>(
         macro_rules! each {
             (|$j:ident| $e:expr) => {{
                 let mut out = regs[d];
-                for $j in 0..NB {
+                for $j in 0..used {
                     out[$j] = $e;
                 }
                 regs[d] = out;

@@ -44,7 +44,7 @@ pub(crate) fn value(tape: &Tape, p: Vec2) -> (f32, MaterialId) {
 
 #[inline(always)]
 fn value_on(tape: &Tape, p: Vec2, regs: &mut [[Fv<Scalar>; 1]]) -> (f32, MaterialId) {
-    run_tape(Scalar, tape, regs, &[p.x], &[p.y]);
+    run_tape(Scalar, tape, regs, &[p.x], &[p.y], 1);
     let v = regs[tape.value as usize][0].0;
     let m = match tape.material {
         MatOut::Value(r) => material_of(tape, regs[r as usize][0].0),
@@ -84,7 +84,7 @@ pub(crate) fn dual(tape: &Tape, p: Vec2) -> (Dual, MaterialId) {
 
 #[inline(always)]
 fn dual_on(tape: &Tape, p: Vec2, regs: &mut [[Dv<Scalar>; 1]]) -> (Dual, MaterialId) {
-    run_tape(Scalar, tape, regs, &[p.x], &[p.y]);
+    run_tape(Scalar, tape, regs, &[p.x], &[p.y], 1);
     let d = regs[tape.value as usize][0];
     let m = match tape.material {
         MatOut::Value(r) => material_of(tape, regs[r as usize][0].v),

@@ -450,7 +450,7 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
                 }
                 let mut mats = [l.splat_i(0); NB];
                 let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
-                apply_values(l, events, &mut ds, &mut mats, &ps, band);
+                apply_values(l, events, &mut ds, &mut mats, &ps, band, NB);
                 for (r, d) in ds.iter().enumerate() {
                     l.store(d.0, &mut lanes);
                     for (k, &i) in idx.iter().enumerate().skip(r * L::WIDTH).take(L::WIDTH) {
@@ -500,7 +500,7 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                     *p = lane_point(l, &pts, r);
                 }
                 let (mut ds, mut mats) =
-                    start_with_materials(l, t, &start, g.cell, &mut block, &pts, &ps);
+                    start_with_materials(l, t, &start, g.cell, &mut block, &pts, &ps, NB);
                 let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
                 for e in events {
                     for r in 0..NB {
@@ -529,7 +529,9 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
 
 /// The lanes' starting values and materials for the points `pts` (`ps` as lane registers)
 /// of one block of `cell`: the cell's state, before its events. Samples and bakes share it.
+/// Only the first `used` lane registers are worked (the rest keep the band's top).
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
     l: L,
     t: &Terrain<F>,
@@ -538,7 +540,9 @@ fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
     block: &mut Option<Block<L, V, NB>>,
     pts: &[Vec2],
     ps: &[P2<V>; NB],
+    used: usize,
 ) -> ([V; NB], [L::I; NB]) {
+    let used = used.min(NB);
     let band = t.options.band;
     let mut ds = [V::cst(l, band); NB];
     let mut mats = [l.splat_i(0); NB];
@@ -546,10 +550,10 @@ fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
         Start::Base(plan) | Start::AirFromBase(plan) => {
             let tape = &plan.material;
             let b = block.get_or_insert_with(|| Block::new(l, tape));
-            b.run(l, tape, pts);
+            b.run_used(l, tape, pts, used);
             let base = matches!(start, Start::Base(_));
             let mut tape_mats = [0 as MaterialId; 16];
-            for r in 0..NB {
+            for r in 0..used {
                 b.materials(l, tape, r, &mut tape_mats);
                 mats[r] = l.load_i(&tape_mats.map(i32::from));
                 if base {
@@ -566,7 +570,7 @@ fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
         }
         Start::AirFromBrick(id) | Start::Brick(id) => {
             let baked = matches!(start, Start::Brick(_));
-            for r in 0..NB {
+            for r in 0..used {
                 let (d, m) = brick(l, t, *id, cell, ps[r], true);
                 if baked {
                     ds[r] = d;
@@ -607,9 +611,12 @@ impl<F: Sdf> Kernel for Bake<'_, F> {
             for (r, p) in ps.iter_mut().enumerate() {
                 *p = lane_point(l, pts, r);
             }
-            let (mut ds, mut mats) = start_with_materials(l, t, &start, cell, &mut block, pts, &ps);
-            apply_values(l, &events, &mut ds, &mut mats, &ps, band);
-            for r in 0..NB {
+            // A short block (a bake of a row or two) works only its registers with points.
+            let used = pts.len().div_ceil(L::WIDTH).min(NB);
+            let (mut ds, mut mats) =
+                start_with_materials(l, t, &start, cell, &mut block, pts, &ps, used);
+            apply_values(l, &events, &mut ds, &mut mats, &ps, band, used);
+            for r in 0..used {
                 l.store(ds[r].0, &mut v);
                 l.store_i(mats[r], &mut mat_lanes);
                 let first = chunk * step + r * L::WIDTH;
@@ -706,12 +713,13 @@ fn apply_values<L: Lanes, const NB: usize>(
     mats: &mut [L::I; NB],
     ps: &[P2<Fv<L>>; NB],
     band: f32,
+    used: usize,
 ) {
     let top = l.splat(band);
     let all_at_top = |d: L::F| !l.any(l.not(l.and(l.ge(d, top), l.le(d, top))));
     for e in events {
         let carve = e.kind == EventKind::Carve;
-        for r in 0..NB {
+        for r in 0..used.min(NB) {
             if carve && all_at_top(ds[r].0) {
                 continue;
             }
