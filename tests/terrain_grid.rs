@@ -6,7 +6,7 @@ mod common;
 use common::Rng;
 use craterfield::det::math::{Dual, Num, V2};
 use craterfield::field2d::{
-    CellState, Event, MaterialSource, Sample, Sdf, Terrain, TerrainError, TerrainOptions,
+    CellState, Event, MaterialSource, Node, Sample, Sdf, Terrain, TerrainError, TerrainOptions,
 };
 use glam::Vec2;
 use proptest::prelude::*;
@@ -1169,6 +1169,109 @@ fn prepare_builds_every_cell_tape_and_changes_no_bit() {
     for (k, p) in pts.iter().enumerate() {
         assert_eq!(a[k].to_bits(), c[k].to_bits(), "batch at {p}");
     }
+}
+
+/// A wavy ground as a height profile (`dx` 4) united with a disc and a box, as a level
+/// without materials writes it; `wrap` puts something around the profile.
+fn profile_graph(wrap: impl Fn(Node) -> Node) -> craterfield::field2d::Graph {
+    let heights: Vec<f32> = (0..=256)
+        .map(|i| 300.0 + 60.0 * (i as f32 * 0.09).sin() + 25.0 * (i as f32 * 0.31).cos())
+        .collect();
+    let ground = Node::HeightProfile {
+        x0: 0.0,
+        dx: 4.0,
+        heights,
+    };
+    let root = Node::Union(vec![
+        wrap(ground),
+        Node::Circle {
+            center: [300.0, 520.0],
+            radius: 40.0,
+        },
+        Node::Box {
+            center: [700.0, 480.0],
+            half_size: [50.0, 20.0],
+        },
+    ]);
+    craterfield::field2d::Graph::compile(&root, &Default::default()).unwrap()
+}
+
+/// Which programs may cap their height profiles' search at the band: a profile read
+/// through unions only may; one offset, or painted so that a comparison picks a material,
+/// may not.
+#[test]
+fn only_profiles_read_through_unions_are_capped() {
+    let program = |g: &craterfield::field2d::Graph| g.program();
+    assert!(program(&profile_graph(|n| n)).heights_only_clamped());
+    let round = |n| Node::Round {
+        radius: 3.0,
+        node: Box::new(n),
+    };
+    assert!(!program(&profile_graph(round)).heights_only_clamped());
+    let painted = |n| Node::Material {
+        id: 1,
+        node: Box::new(n),
+    };
+    assert!(!program(&profile_graph(painted)).heights_only_clamped());
+    let circle = Node::Circle {
+        center: [0.0, 0.0],
+        radius: 5.0,
+    };
+    let g = craterfield::field2d::Graph::compile(&circle, &Default::default()).unwrap();
+    assert!(!program(&g).heights_only_clamped(), "no profile to cap");
+}
+
+/// Cells whose height profile stops its search at the band answer every query, gradient
+/// and material included, and bake every brick, with the bits of the uncapped whole
+/// program: points deep under the ground (whose search would cover hundreds of units) and
+/// high above it, before and after explosions, one point at a time and in batches.
+#[test]
+fn capped_height_profiles_keep_every_bit() {
+    let (min, max) = (Vec2::new(0.0, 0.0), Vec2::new(1024.0, 1024.0));
+    let o = TerrainOptions {
+        cell_cap: 8,
+        ..TerrainOptions::default()
+    };
+    let mut capped = Terrain::new(profile_graph(|n| n), min, max, o).unwrap();
+    let mut plain = Terrain::new(profile_graph(|n| n), min, max, o).unwrap();
+    plain.set_specialize(false);
+    let mut rng = Rng(0xca9);
+    let pts: Vec<Vec2> = (0..6000)
+        .map(|i| match i % 3 {
+            0 => Vec2::new(rng.range(0.0, 1024.0), rng.range(0.0, 1024.0)),
+            // Near the ground, where the cap must not drop the nearest segment.
+            1 => Vec2::new(rng.range(0.0, 1024.0), rng.range(200.0, 420.0)),
+            _ => Vec2::new(rng.range(-40.0, 1064.0), rng.range(-40.0, 1064.0)),
+        })
+        .collect();
+    let compare = |a: &Terrain<craterfield::field2d::Graph>,
+                   b: &Terrain<craterfield::field2d::Graph>| {
+        for &p in &pts {
+            assert_same(a.sample(p), b.sample(p), p);
+            assert_eq!(a.distance(p).to_bits(), b.distance(p).to_bits(), "{p}");
+        }
+        let (mut x, mut y) = (vec![0.0; pts.len()], vec![0.0; pts.len()]);
+        a.distances(&pts, &mut x).unwrap();
+        b.distances(&pts, &mut y).unwrap();
+        for (k, p) in pts.iter().enumerate() {
+            assert_eq!(x[k].to_bits(), y[k].to_bits(), "batch at {p}");
+        }
+    };
+    compare(&capped, &plain);
+    for tick in 1..=300u32 {
+        let c = Vec2::new(rng.range(0.0, 1024.0), rng.range(150.0, 450.0));
+        let e = if tick % 5 == 0 {
+            Event::fill(c, rng.range(8.0, 30.0), 0).unwrap()
+        } else {
+            Event::carve(c, rng.range(8.0, 50.0)).unwrap()
+        };
+        for t in [&mut capped, &mut plain] {
+            t.apply(e).unwrap();
+            t.set_tick(tick).unwrap();
+        }
+    }
+    assert!(capped.stats().bricks > 0, "the events baked no brick");
+    compare(&capped, &plain);
 }
 
 /// Cells in the air skip their lists where no fill was ever listed (the value stays at

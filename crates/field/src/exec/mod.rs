@@ -129,7 +129,9 @@ pub(crate) fn run_tape<L: Lanes, V: Val<L>, const NB: usize>(
                 prm.f(at + 7)
             )),
             Op::HalfPlane => point!(|p| prims::half_plane(l, p, prm.v2(at), prm.f(at + 2))),
-            Op::Height => point!(|p| prims::height_profile(l, p, Params(&tape.params[at..]))),
+            Op::Height => {
+                point!(|p| prims::height_profile(l, p, Params(&tape.params[at..]), tape.height_cap))
+            }
             Op::Noise => bin!(|x, y| prims::value_noise(l, x, y, ins.imm)),
             Op::Wave => un!(|x| prims::wave(l, x)),
             Op::RepeatIndex => {

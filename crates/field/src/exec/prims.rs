@@ -235,8 +235,10 @@ fn from_lanes<L: Lanes>(l: L, v: &[f32; 16]) -> L::F {
 }
 
 /// `primitives::height_profile`; parameters: count, dx, points, inverse squared lengths.
+/// Segments are searched within the point's vertical gap to the ground, or within `cap`
+/// where that is less (see `Tape::with_height_cap`; a NaN gap stays NaN).
 #[inline(always)]
-pub(crate) fn height_profile<L: Lanes, V: Val<L>>(l: L, p: P2<V>, prm: Params<'_>) -> V {
+pub(crate) fn height_profile<L: Lanes, V: Val<L>>(l: L, p: P2<V>, prm: Params<'_>, cap: f32) -> V {
     let n = prm.u(0) as usize;
     if n < 2 {
         return V::cst(l, f32::INFINITY);
@@ -248,7 +250,8 @@ pub(crate) fn height_profile<L: Lanes, V: Val<L>>(l: L, p: P2<V>, prm: Params<'_
     let segments = n - 1;
     let (px, py) = (p.x.v(), p.y.v());
     let ground = ground_height(l, px, first, last, segments, dx, &pt);
-    let reach = l.abs(l.sub(py, ground));
+    let gap = l.abs(l.sub(py, ground));
+    let reach = l.select(l.gt(gap, l.splat(cap)), l.splat(cap), gap);
     let mut d2 = V::cst(l, f32::INFINITY);
     let dy = p.y.offset(l, -first.y);
     d2 = V::select(l, l.lt(px, l.splat(first.x)), dy.mul(l, dy), d2);
@@ -292,7 +295,13 @@ pub(crate) fn height_profile<L: Lanes, V: Val<L>>(l: L, p: P2<V>, prm: Params<'_
 pub(crate) fn height_profile_at(params: &[u32], p: Vec2) -> f32 {
     use super::value::Fv;
     use craterfield_core::simd::Scalar;
-    height_profile(Scalar, P2::new(Fv(p.x), Fv(p.y)), Params(params)).0
+    height_profile(
+        Scalar,
+        P2::new(Fv(p.x), Fv(p.y)),
+        Params(params),
+        f32::INFINITY,
+    )
+    .0
 }
 
 /// `primitives::ground_height` per lane.

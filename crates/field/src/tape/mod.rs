@@ -27,6 +27,7 @@ mod image;
 mod interval;
 mod lipschitz;
 mod lower;
+mod reach;
 mod regalloc;
 mod specialize;
 
@@ -400,9 +401,23 @@ pub struct Tape {
     pub(crate) registers: usize,
     pub(crate) value: u32,
     pub(crate) material: MatOut,
+    /// How far a height profile searches for its nearest segment at most
+    /// (`f32::INFINITY`: as far as the point's vertical gap to the ground; see
+    /// [`Tape::with_height_cap`]).
+    pub(crate) height_cap: f32,
 }
 
 impl Tape {
+    /// This tape with its height profiles searching no farther than `cap`, for a caller
+    /// that clamps the value output to `[-m, m]` with `m <= cap` and whose program
+    /// [`Program::heights_only_clamped`]: the clamped value, gradient and material keep
+    /// every bit, and a profile stops visiting segments beyond the band. A point far
+    /// below the ground otherwise visits every segment within its depth.
+    pub fn with_height_cap(mut self, cap: f32) -> Tape {
+        self.height_cap = cap;
+        self
+    }
+
     /// Bytes of its instructions and parameters.
     pub fn bytes(&self) -> usize {
         self.instrs.len() * std::mem::size_of::<Instr>() + self.params.len() * 4
@@ -415,6 +430,7 @@ impl Tape {
             && self.registers == other.registers
             && self.value == other.value
             && self.material == other.material
+            && self.height_cap.to_bits() == other.height_cap.to_bits()
     }
 
     /// Number of instructions.

@@ -120,6 +120,7 @@ pub(super) fn allocate(program: &Program, outputs: Outputs) -> Tape {
             (None, MatOut::Const(c)) => MatOut::Const(c),
             (None, MatOut::Value(_)) => MatOut::Const(0),
         },
+        height_cap: f32::INFINITY,
     }
 }
 

@@ -62,14 +62,14 @@ impl CellTape {
             // (a long height profile's all), so the words add little to tell tapes apart.
             t.params.len().hash(&mut h);
             t.params.iter().step_by(64).for_each(|w| w.hash(&mut h));
-            (t.registers, t.value, t.material).hash(&mut h);
+            (t.registers, t.value, t.material, t.height_cap.to_bits()).hash(&mut h);
         }
         self.clamped.map(f32::to_bits).hash(&mut h);
         (self.range.0.to_bits(), self.range.1.to_bits()).hash(&mut h);
         h.finish()
     }
 
-    fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32) -> CellTape {
+    fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32, reach: Reach) -> CellTape {
         let mut range = (-band, band);
         let (program, clamped) = match region {
             Some((min, max)) => {
@@ -92,9 +92,23 @@ impl CellTape {
             }
             None => (program.fuse(), None),
         };
+        let (value, material) = (
+            program.tape(Outputs::Value),
+            program.tape(Outputs::ValueMaterial),
+        );
+        let (value, material) = match reach {
+            Reach::Band if program.heights_only_clamped() => {
+                // Past the band by a margin for the rounding of the search's bounds
+                // (the nearest segment's computed distance against its true one, and
+                // `x ± cap` at coordinates up to `MAX_COORD`).
+                let cap = band + band / 256.0 + 1.0 / 16.0;
+                (value.with_height_cap(cap), material.with_height_cap(cap))
+            }
+            _ => (value, material),
+        };
         CellTape {
-            value: program.tape(Outputs::Value),
-            material: program.tape(Outputs::ValueMaterial),
+            value,
+            material,
             clamped,
             range,
         }
@@ -130,6 +144,18 @@ impl Hasher for WordHasher {
     fn finish(&self) -> u64 {
         self.0
     }
+}
+
+/// How far a region's height profiles search for their nearest segment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Reach {
+    /// As far as the point's gap to the ground: the unclamped value (the halo's tiles and
+    /// the whole program, whose values clear runs read past the band).
+    Full,
+    /// Past the band by a margin, where the program allows it
+    /// ([`Program::heights_only_clamped`]): a grid cell, whose base is only ever read
+    /// clamped.
+    Band,
 }
 
 /// The distinct tapes built so far, by content, and their bytes.
@@ -257,7 +283,7 @@ impl CellTapes {
     /// The whole program's tapes (outside the grid, and past the budget).
     fn whole(&self) -> &Arc<CellTape> {
         self.outside
-            .get_or_init(|| Arc::new(CellTape::new(&self.program, None, self.band)))
+            .get_or_init(|| Arc::new(CellTape::new(&self.program, None, self.band, Reach::Full)))
     }
 
     /// Bytes of the distinct specialized tapes kept.
@@ -268,9 +294,9 @@ impl CellTapes {
     /// The plan of `cell` (`None`: outside the grid, the whole program).
     pub(super) fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellTape {
         match cell.and_then(|c| self.cells.get(c).map(|slot| (c, slot))) {
-            Some((c, slot)) if self.specialize => {
-                slot.get_or_init(|| self.specialized(grid.cell_min_f32(c), grid.cell_size()))
-            }
+            Some((c, slot)) if self.specialize => slot.get_or_init(|| {
+                self.specialized(grid.cell_min_f32(c), grid.cell_size(), Reach::Band)
+            }),
             _ => self.whole(),
         }
     }
@@ -281,7 +307,8 @@ impl CellTapes {
         match self.halo.tile_of(p) {
             Some((i, min)) if self.specialize => {
                 let size = self.halo.tile;
-                let plan = self.halo.tiles[i].get_or_init(|| self.specialized(min, size));
+                let plan =
+                    self.halo.tiles[i].get_or_init(|| self.specialized(min, size, Reach::Full));
                 (plan, Some((min, min + Vec2::splat(size))))
             }
             _ => (self.whole(), None),
@@ -290,7 +317,7 @@ impl CellTapes {
 
     /// The program specialized to the square of side `size` at `min` (shared with any
     /// equal tape; the whole program's past the budget).
-    fn specialized(&self, min: Vec2, size: f32) -> Arc<CellTape> {
+    fn specialized(&self, min: Vec2, size: f32, reach: Reach) -> Arc<CellTape> {
         // Padded: the f32 lookup may place a point a rounding error outside the square.
         let pad = size / 1024.0 + (min.abs().max_element() + size) / 1_048_576.0;
         let max = min + Vec2::splat(size + pad);
@@ -299,7 +326,7 @@ impl CellTapes {
         if self.bytes() >= MAX_CELL_TAPE_BYTES {
             return whole.clone();
         }
-        let tape = CellTape::new(&self.program, Some((min, max)), self.band);
+        let tape = CellTape::new(&self.program, Some((min, max)), self.band, reach);
         if tape.same_as(whole) {
             return whole.clone();
         }
