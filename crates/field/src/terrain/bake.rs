@@ -53,10 +53,15 @@ impl<F: Sdf> Terrain<F> {
                     continue;
                 }
                 self.grid.record_bake_started();
+                // The whole lattice's room at once: growing it row by row as the ticks
+                // go copied up to a brick's samples inside one tick.
                 self.baking = Some(PartialBake {
                     cell,
                     prefix,
-                    rows: Brick::default(),
+                    rows: Brick {
+                        values: Vec::with_capacity(side * side),
+                        materials: Vec::with_capacity(side * side),
+                    },
                 });
             }
             let Some(bake) = &self.baking else { break };
