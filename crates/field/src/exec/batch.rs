@@ -38,7 +38,7 @@ impl<L: Lanes, V: Val<L>, const NB: usize> Block<L, V, NB> {
         if self.regs.len() < tape.registers() {
             self.regs.resize(tape.registers(), [V::cst(l, 0.0); NB]);
         }
-        load_points(l, points, &mut self.xs, &mut self.ys);
+        load_points(l, points, &mut self.xs, &mut self.ys, used);
         run_tape(l, tape, &mut self.regs, &self.xs, &self.ys, used);
     }
 

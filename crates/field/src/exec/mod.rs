@@ -202,20 +202,21 @@ pub(crate) fn run_tape<L: Lanes, V: Val<L>, const NB: usize>(
     }
 }
 
-/// Loads `NB` lane registers of x and y from `points` (shorter input repeats its last
-/// point so every lane holds a real point).
+/// Loads the first `used` (at most `NB`) lane registers of x and y from `points`
+/// (shorter input repeats its last point so every lane holds a real point).
 #[inline(always)]
 pub(crate) fn load_points<L: Lanes, const NB: usize>(
     l: L,
     points: &[Vec2],
     xs: &mut [L::F; NB],
     ys: &mut [L::F; NB],
+    used: usize,
 ) {
     let w = L::WIDTH;
     let mut bx = [0.0f32; 16];
     let mut by = [0.0f32; 16];
     let last = points.len().saturating_sub(1);
-    for r in 0..NB {
+    for r in 0..used.min(NB) {
         for k in 0..w {
             let p = points.get(r * w + k).or(points.get(last)).copied();
             let p = p.unwrap_or(Vec2::ZERO);

@@ -607,12 +607,12 @@ impl<F: Sdf> Kernel for Bake<'_, F> {
         let (mut v, mut mat_lanes) = ([0.0f32; 16], [0i32; 16]);
         let step = NB * L::WIDTH;
         for (chunk, pts) in self.points.chunks(step).enumerate() {
-            let mut ps = [P2::new(Fv::cst(l, 0.0), Fv::cst(l, 0.0)); NB];
-            for (r, p) in ps.iter_mut().enumerate() {
-                *p = lane_point(l, pts, r);
-            }
             // A short block (a bake of a row or two) works only its registers with points.
             let used = pts.len().div_ceil(L::WIDTH).min(NB);
+            let mut ps = [P2::new(Fv::cst(l, 0.0), Fv::cst(l, 0.0)); NB];
+            for (r, p) in ps.iter_mut().enumerate().take(used) {
+                *p = lane_point(l, pts, r);
+            }
             let (mut ds, mut mats) =
                 start_with_materials(l, t, &start, cell, &mut block, pts, &ps, used);
             apply_values(l, &events, &mut ds, &mut mats, &ps, band, used);
