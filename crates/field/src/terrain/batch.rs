@@ -307,10 +307,10 @@ impl<F: Sdf> Terrain<F> {
     fn prepared_prefix(&self, cell: Option<usize>, upto: usize, out: &mut Vec<Prepared>) {
         out.clear();
         let list = cell.and_then(|c| self.grid.stored_cell(c));
-        for e in list.into_iter().flat_map(|c| c.events.iter().take(upto)) {
-            let Some(e) = self.events.get(*e as usize) else {
-                continue;
-            };
+        for e in list
+            .into_iter()
+            .flat_map(|c| c.events.events().iter().take(upto))
+        {
             if let Some(r) = e.radius_at(self.tick) {
                 out.push(Prepared {
                     kind: e.kind,

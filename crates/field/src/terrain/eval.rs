@@ -100,13 +100,11 @@ impl<F: Sdf> Terrain<F> {
         };
         if !c.may_fill && d.is_top(m) {
             // Only carves follow, and each leaves the top as it is (`apply_unless_top`):
-            // the list need not be read, which spares a sky cell its events' cache misses.
+            // the list need not be read.
             return (d, mat);
         }
-        for &i in c.events.iter().take(upto) {
-            if let Some(e) = self.events.get(i as usize) {
-                (d, mat) = apply_unless_top(d, mat, pn, e, self.tick, m);
-            }
+        for e in c.events.events().iter().take(upto) {
+            (d, mat) = apply_unless_top(d, mat, pn, e, self.tick, m);
         }
         (d, mat)
     }

@@ -83,7 +83,7 @@ impl<F: Sdf> Terrain<F> {
         let settled_at = e.tick.saturating_add(u32::from(e.grow_ticks));
         for cell in self.cells_of(&e) {
             if let Some(c) = self.begin_cell_change(cell) {
-                c.events.push(idx);
+                c.events.push(idx, e);
                 c.may_fill |= e.kind == EventKind::Fill;
                 c.settled_at = c.settled_at.max(settled_at);
             }
@@ -125,11 +125,7 @@ impl<F: Sdf> Terrain<F> {
             let new_state = match e.kind {
                 EventKind::Fill => Some(CellState::Solid(e.material)),
                 EventKind::Carve => {
-                    let has_fill = c.events.iter().any(|&i| {
-                        self.events
-                            .get(i as usize)
-                            .is_none_or(|x| x.kind == EventKind::Fill)
-                    });
+                    let has_fill = (c.events.events().iter()).any(|x| x.kind == EventKind::Fill);
                     if has_fill {
                         None
                     } else {
@@ -156,15 +152,15 @@ impl<F: Sdf> Terrain<F> {
         }
         // 2. Covered events, within the run of sharp same-kind same-material events that
         //    ends with the new one.
-        let list = &c.events;
-        let Some(&last) = list.last() else { return };
+        let Some(&last) = c.events.last() else { return };
         if last != idx {
             return;
         }
+        let list = c.events.events();
         let mut drop_new = false;
         let mut drop: Vec<usize> = Vec::new();
         for pos in (0..list.len().saturating_sub(1)).rev() {
-            let Some(x) = list.get(pos).and_then(|&i| self.events.get(i as usize)) else {
+            let Some(x) = list.get(pos) else {
                 break;
             };
             let same_run = x.kind == e.kind
@@ -200,9 +196,7 @@ impl<F: Sdf> Terrain<F> {
         }
         // `drop` is in descending position order, so removals don't shift later ones.
         for pos in drop {
-            if pos < c.events.len() {
-                c.events.remove(pos);
-            }
+            c.events.remove(pos);
         }
         self.grid.count_pruned(pruned);
     }
@@ -237,13 +231,8 @@ impl<F: Sdf> Terrain<F> {
         let Some(c) = self.grid.stored_cell(cell) else {
             return 0;
         };
-        c.events
-            .iter()
-            .take_while(|&&i| {
-                self.events
-                    .get(i as usize)
-                    .is_some_and(|e| e.is_settled(self.tick))
-            })
+        (c.events.events().iter())
+            .take_while(|e| e.is_settled(self.tick))
             .count()
     }
 
@@ -253,7 +242,7 @@ impl<F: Sdf> Terrain<F> {
         let id = self.grid.store_brick(cell, brick);
         self.grid.set_state(cell, CellState::Brick(id));
         if let Some(c) = self.grid.edit_recorded_cell(cell) {
-            c.events.drain(..prefix.min(c.events.len()));
+            c.events.drop_prefix(prefix);
         }
         self.grid.count_bake();
     }
@@ -292,5 +281,88 @@ impl<F: Sdf> Terrain<F> {
             self.install_brick(cell, prefix, brick);
         }
         self.update_over_cap(cell);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec2;
+
+    use crate::terrain::Terrain;
+    use crate::{Event, Graph, Level};
+
+    /// Every list, of every cell and of every journaled pre-image, holds copies equal to
+    /// the log's events at its indices.
+    fn assert_copies_match_the_log(t: &Terrain<Graph>, when: &str) {
+        let images = t.grid.journal_cell_images();
+        for (k, c) in t.grid.stored_cells().iter().chain(images).enumerate() {
+            let named: Vec<Event> = c.events.iter().map(|&i| t.events[i as usize]).collect();
+            assert_eq!(c.events.events(), &named[..], "list {k} {when}");
+        }
+    }
+
+    /// Inserts (carves and fills, sharp and smooth, growing), covered-event pruning, cell
+    /// resets, bakes, compaction, rollback, rebuilds and restores all keep each list's
+    /// copies equal to its indices' events.
+    #[test]
+    fn listed_copies_stay_equal_to_the_log() {
+        let level = Level::default_level();
+        let b = level.bounds();
+        let mut o = level.terrain_options();
+        o.cell_cap = 6;
+        o.brick_resolution = 8;
+        o.max_events = 48;
+        let mut t = Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
+        t.enable_rollback();
+        let mut state = 0x11_57u64;
+        let mut unit = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((state >> 40) as f32) / (1u64 << 24) as f32
+        };
+        let mut mark = t.mark();
+        for k in 0..600u32 {
+            let c = Vec2::new(1200.0 + unit() * 300.0, 450.0 + unit() * 250.0);
+            let r = 4.0 + unit() * 60.0;
+            let mut e = if unit() < 0.25 {
+                Event::fill(c, r, (k % 3) as u16).unwrap()
+            } else {
+                Event::carve(c, r).unwrap()
+            };
+            if unit() < 0.1 {
+                e = e.with_rim(unit() * 6.0).unwrap();
+            }
+            if unit() < 0.1 {
+                e = e.with_growth(1 + k as u16 % 5);
+            }
+            t.apply(e.at_tick(t.tick())).unwrap();
+            if k % 3 == 0 {
+                t.set_tick(t.tick() + 1).unwrap();
+            }
+            if k % 50 == 25 {
+                // A short rollback window, as a world keeps, so compaction may drop events.
+                mark = t.mark();
+                if let Some(m) = &mark {
+                    t.forget_before(m);
+                }
+            }
+            if k % 50 == 40
+                && let Some(m) = &mark
+            {
+                t.rollback(m).unwrap();
+                assert_copies_match_the_log(&t, &format!("after a rollback at {k}"));
+            }
+            assert_copies_match_the_log(&t, &format!("after event {k}"));
+        }
+        assert!(
+            t.events_applied() > t.events.len() as u64,
+            "the log compacted"
+        );
+        assert!(t.grid.live_bricks() > 0, "cells baked");
+        let saved = t.state();
+        let mut restored = Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
+        restored.restore_state(&saved).unwrap();
+        assert_copies_match_the_log(&restored, "after a restore");
     }
 }

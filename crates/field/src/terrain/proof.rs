@@ -29,7 +29,7 @@ use std::cmp::Ordering;
 use glam::Vec2;
 
 use super::Terrain;
-use crate::event::EventKind;
+use crate::event::{Event, EventKind};
 use crate::sample::MaterialId;
 use crate::sdf::Sdf;
 use crate::tape::MatOut;
@@ -106,7 +106,7 @@ impl<F: Sdf> Terrain<F> {
         };
         // The same walk as `rect_sign_of`, reading the list in place: one question about a
         // cell allocates nothing.
-        let discs = c.events.iter().filter_map(|&i| self.disc(i));
+        let discs = c.events.events().iter().filter_map(|e| self.disc(e));
         let start = self.proof_start(cell);
         self.sign_over(discs, start, cell, min, max, above, Some(below))
     }
@@ -123,12 +123,7 @@ impl<F: Sdf> Terrain<F> {
         // A list that never held a fill (`may_fill`) holds carves only, unread.
         if let Start::Range(lo, _) = start
             && lo >= above
-            && (!c.may_fill
-                || c.events.iter().all(|&i| {
-                    self.events
-                        .get(i as usize)
-                        .is_some_and(|e| e.kind == EventKind::Carve)
-                }))
+            && (!c.may_fill || c.events.events().iter().all(|e| e.kind == EventKind::Carve))
         {
             return true;
         }
@@ -137,7 +132,7 @@ impl<F: Sdf> Terrain<F> {
             // could save: bricks hold surfaces, and the march crosses them anyway.
             return false;
         }
-        let discs = c.events.iter().filter_map(|&i| self.disc(i));
+        let discs = c.events.events().iter().filter_map(|e| self.disc(e));
         let sign = self.sign_over(discs, start, cell, min, max, above, None);
         sign == RectSign::Above
     }
@@ -147,7 +142,12 @@ impl<F: Sdf> Terrain<F> {
     /// `None`: no such cell. Valid until the terrain changes.
     pub fn event_discs(&self, cell: usize) -> Option<EventDiscs> {
         let c = self.grid.stored_cell(cell)?;
-        let discs = c.events.iter().filter_map(|&i| self.disc(i)).collect();
+        let discs = c
+            .events
+            .events()
+            .iter()
+            .filter_map(|e| self.disc(e))
+            .collect();
         Some(EventDiscs {
             cell,
             discs,
@@ -177,10 +177,9 @@ impl<F: Sdf> Terrain<F> {
         )
     }
 
-    /// Event `i` as the sign proof reads it at the terrain's tick; `None` when it is not
-    /// in effect (or not in the log).
-    fn disc(&self, i: u32) -> Option<Disc> {
-        let e = self.events.get(i as usize)?;
+    /// Event `e` as the sign proof reads it at the terrain's tick; `None` when it is not
+    /// in effect.
+    fn disc(&self, e: &Event) -> Option<Disc> {
         let r = e.radius_at(self.tick)?;
         let o = e.center_f32();
         Some(Disc {
@@ -372,11 +371,8 @@ impl<F: Sdf> Terrain<F> {
     pub fn cell_material(&self, cell: usize) -> Option<MaterialId> {
         let start = self.start_material(cell)?;
         let c = self.grid.stored_cell(cell)?;
-        let all_same = c.events.iter().all(|&i| {
-            self.events
-                .get(i as usize)
-                .is_none_or(|e| e.kind == EventKind::Carve || e.material == start)
-        });
+        let all_same =
+            (c.events.events().iter()).all(|e| e.kind == EventKind::Carve || e.material == start);
         all_same.then_some(start)
     }
 
@@ -433,10 +429,7 @@ impl<F: Sdf> Terrain<F> {
         let pn = V2::new(p.x, p.y);
         let (mut d, _) = self.eval_cell::<f32, false>(p, cell, 0);
         let (mut mat, mut margin) = (start, f32::INFINITY);
-        for &i in &c.events {
-            let Some(e) = self.events.get(i as usize) else {
-                continue;
-            };
+        for e in c.events.events() {
             if let (EventKind::Fill, Some(r)) = (e.kind, e.radius_at(self.tick)) {
                 // `c` exactly as `apply_event` computes it, so `wins` is its decision.
                 let c = pn.minus(e.center_f32()).length().offset(-r);

@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use super::Terrain;
 use super::error::TerrainError;
-use super::grid::{Brick, Cell, CellState, CellStateSlot, GridStats, MaterialSource};
+use super::grid::{Brick, Cell, CellState, CellStateSlot, EventList, GridStats, MaterialSource};
 use crate::event::{Event, EventKind};
 use crate::sample::MaterialId;
 use crate::sdf::Sdf;
@@ -173,7 +173,12 @@ impl<F: Sdf> Terrain<F> {
         for (i, cell_state, settled, list) in state.cells() {
             if let Some(c) = cells.get_mut(i as usize) {
                 c.state = CellStateSlot(cell_state);
-                c.events = list.to_vec();
+                c.events = EventList::from_log(list, &state.events).ok_or_else(|| {
+                    bad(format!(
+                        "cell {i} lists an event past the log's {}",
+                        state.events.len()
+                    ))
+                })?;
                 c.may_fill = list.iter().any(|&k| {
                     (state.events.get(k as usize)).is_none_or(|e| e.kind == EventKind::Fill)
                 });

@@ -70,7 +70,7 @@ pub struct GridStats {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Cell {
     pub(in crate::terrain) state: CellStateSlot,
-    pub(in crate::terrain) events: Vec<u32>,
+    pub(in crate::terrain) events: super::EventList,
     /// Changes whenever the cell's field may change (a number never given to any other
     /// content of any cell of this terrain), so callers can cache values by it.
     pub(in crate::terrain) revision: u64,

@@ -39,11 +39,17 @@ impl Grid {
         self.journal.as_ref().map_or(0, Journal::appended_events)
     }
 
+    /// The journaled pre-images of cells, oldest first.
+    #[cfg(test)]
+    pub(in crate::terrain) fn journal_cell_images(&self) -> impl Iterator<Item = &Cell> {
+        self.journal.iter().flat_map(Journal::cell_images)
+    }
+
     /// Every list of event indices the terrain may read again: each cell's, then each
     /// journaled pre-image's (an undo puts those back). Compaction keeps what they hold.
     pub(in crate::terrain) fn event_lists(&self) -> impl Iterator<Item = &[u32]> {
         let images = self.journal.iter().flat_map(Journal::cell_images);
-        self.cells.iter().chain(images).map(|c| c.events.as_slice())
+        self.cells.iter().chain(images).map(|c| &c.events[..])
     }
 
     /// Forgets the history before `mark` (older marks become too old), bounding the
@@ -296,11 +302,6 @@ impl Grid {
         renumber: &[u32],
         mut fresh_revision: impl FnMut() -> u64,
     ) {
-        let map = |list: &mut Vec<u32>| {
-            for i in list.iter_mut() {
-                *i = renumber.get(*i as usize).copied().unwrap_or(u32::MAX);
-            }
-        };
         for c in &mut self.cells {
             let changed = c
                 .events
@@ -308,11 +309,11 @@ impl Grid {
                 .any(|&i| renumber.get(i as usize) != Some(&i));
             if changed {
                 c.revision = fresh_revision();
-                map(&mut c.events);
+                c.events.renumber(renumber);
             }
         }
         for image in self.journal.iter_mut().flat_map(Journal::cell_images_mut) {
-            map(&mut image.events);
+            image.events.renumber(renumber);
             image.revision = fresh_revision();
         }
     }

@@ -19,12 +19,14 @@ use thiserror::Error;
 mod cell;
 mod changes;
 mod journal;
+mod list;
 
 pub(crate) use cell::{Brick, Cell, CellStateSlot, PartialBake};
 pub use cell::{CellState, GridStats, MaterialSource};
 pub(in crate::terrain) use journal::Entry;
 use journal::Journal;
 pub use journal::{RollbackError, TerrainMark};
+pub(crate) use list::EventList;
 
 /// Most cells a grid may have, so that memory stays bounded.
 pub const MAX_CELLS: u64 = 4_000_000;
