@@ -275,10 +275,10 @@ impl Grid {
         let y0 = lo(center[1], self.origin.y).max(0.0);
         let x1 = hi(center[0], self.origin.x).min(f64::from(self.nx) - 1.0);
         let y1 = hi(center[1], self.origin.y).min(f64::from(self.ny) - 1.0);
-        let mut out = Vec::new();
         if !(x0 <= x1 && y0 <= y1) {
-            return out;
+            return Vec::new();
         }
+        let mut out = Vec::with_capacity(((x1 - x0 + 1.0) * (y1 - y0 + 1.0)) as usize);
         for iy in (y0 as u32)..=(y1 as u32) {
             for ix in (x0 as u32)..=(x1 as u32) {
                 let i = iy as usize * self.nx as usize + ix as usize;
