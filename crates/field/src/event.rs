@@ -159,10 +159,15 @@ impl Event {
     /// (`tick < self.tick`). Growing events reach `radius * (tick - self.tick + 1) / grow_ticks`
     /// and the full radius from `self.tick + grow_ticks` on.
     pub fn radius_at(&self, tick: u32) -> Option<f32> {
+        self.radius_at_with(self.radius_f32(), tick)
+    }
+
+    /// [`Event::radius_at`] from the full radius `r` (`self.radius_f32()`, already
+    /// converted).
+    pub(crate) fn radius_at_with(&self, r: f32, tick: u32) -> Option<f32> {
         if tick < self.tick {
             return None;
         }
-        let r = self.radius_f32();
         let grow = u32::from(self.grow_ticks);
         let r_eff = if grow == 0 || tick >= self.tick.saturating_add(grow) {
             r

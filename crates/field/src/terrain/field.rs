@@ -7,6 +7,7 @@
 use glam::Vec2;
 
 use super::cell_tapes::CellTape;
+use super::grid::Listed;
 use crate::event::{Event, EventKind};
 use crate::exec;
 use crate::sample::MaterialId;
@@ -98,6 +99,53 @@ pub(super) fn smax<N: Num>(a: N, b: N, k: f32) -> N {
     }
 }
 
+/// What applying an event reads of it: a logged [`Event`], or a cell list's copy with its
+/// world units already converted (the same bits).
+pub(super) trait Term {
+    fn event(&self) -> &Event;
+    fn center(&self) -> Vec2;
+    fn rim(&self) -> f32;
+    fn radius_at(&self, tick: u32) -> Option<f32>;
+}
+
+impl Term for Event {
+    #[inline]
+    fn event(&self) -> &Event {
+        self
+    }
+    #[inline]
+    fn center(&self) -> Vec2 {
+        self.center_f32()
+    }
+    #[inline]
+    fn rim(&self) -> f32 {
+        self.rim_f32()
+    }
+    #[inline]
+    fn radius_at(&self, tick: u32) -> Option<f32> {
+        Event::radius_at(self, tick)
+    }
+}
+
+impl Term for Listed {
+    #[inline]
+    fn event(&self) -> &Event {
+        Listed::event(self)
+    }
+    #[inline]
+    fn center(&self) -> Vec2 {
+        self.center_f32()
+    }
+    #[inline]
+    fn rim(&self) -> f32 {
+        self.rim_f32()
+    }
+    #[inline]
+    fn radius_at(&self, tick: u32) -> Option<f32> {
+        Listed::radius_at(self, tick)
+    }
+}
+
 /// [`apply_event`], except a carve on the band's top ([`Lift::is_top`]), where it changes
 /// no bit (it only raises, the clamp brings it back, the material stays): air cells and
 /// carved-out points skip their later carves.
@@ -106,11 +154,11 @@ pub(super) fn apply_unless_top<N: Lift>(
     d: N,
     mat: MaterialId,
     p: V2<N>,
-    e: &Event,
+    e: &impl Term,
     tick: u32,
     band: f32,
 ) -> (N, MaterialId) {
-    if e.kind == EventKind::Carve && d.is_top(band) {
+    if e.event().kind == EventKind::Carve && d.is_top(band) {
         return (d, mat);
     }
     apply_event(d, mat, p, e, tick, band)
@@ -122,16 +170,16 @@ pub(super) fn apply_event<N: Num>(
     d: N,
     mat: MaterialId,
     p: V2<N>,
-    e: &Event,
+    e: &impl Term,
     tick: u32,
     band: f32,
 ) -> (N, MaterialId) {
     let Some(r) = e.radius_at(tick) else {
         return (d, mat);
     };
-    let c = p.minus(e.center_f32()).length().offset(-r);
-    let k = e.rim_f32();
-    match e.kind {
+    let c = p.minus(e.center()).length().offset(-r);
+    let k = e.rim();
+    match e.event().kind {
         EventKind::Carve => {
             let v = if k > 0.0 { smax(d, -c, k) } else { nmax(d, -c) };
             (nclamp(v, -band, band), mat)
@@ -141,7 +189,10 @@ pub(super) fn apply_event<N: Num>(
             let keeps_d = d.value() < c.value();
             let wins = !keeps_d;
             let v = if k > 0.0 { smin(d, c, k) } else { nmin(d, c) };
-            (nclamp(v, -band, band), if wins { e.material } else { mat })
+            (
+                nclamp(v, -band, band),
+                if wins { e.event().material } else { mat },
+            )
         }
     }
 }

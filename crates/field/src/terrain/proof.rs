@@ -29,11 +29,11 @@ use std::cmp::Ordering;
 use glam::Vec2;
 
 use super::Terrain;
-use crate::event::{Event, EventKind};
+use crate::event::EventKind;
 use crate::sample::MaterialId;
 use crate::sdf::Sdf;
 use crate::tape::MatOut;
-use crate::terrain::grid::{CellState, MaterialSource};
+use crate::terrain::grid::{CellState, Listed, MaterialSource};
 use craterfield_core::det::math::{Num, V2};
 
 /// What a proof may assume about the field inside one grid cell.
@@ -179,7 +179,7 @@ impl<F: Sdf> Terrain<F> {
 
     /// Event `e` as the sign proof reads it at the terrain's tick; `None` when it is not
     /// in effect.
-    fn disc(&self, e: &Event) -> Option<Disc> {
+    fn disc(&self, e: &Listed) -> Option<Disc> {
         let r = e.radius_at(self.tick)?;
         let o = e.center_f32();
         Some(Disc {

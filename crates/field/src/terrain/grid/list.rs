@@ -9,13 +9,66 @@
 
 use std::ops::Deref;
 
+use glam::Vec2;
+
 use crate::event::Event;
+
+/// A listed event with its centre, radius and rim already in world units: a query reads
+/// them for every listed event, and converting the fixed-point fields each time was a
+/// tenth of a near-surface distance query. The conversions are exact, so the cached
+/// values are the bits [`Event::center_f32`] and the others return.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Listed {
+    event: Event,
+    center: Vec2,
+    radius: f32,
+    rim: f32,
+}
+
+impl Listed {
+    fn new(event: Event) -> Listed {
+        Listed {
+            event,
+            center: event.center_f32(),
+            radius: event.radius_f32(),
+            rim: event.rim_f32(),
+        }
+    }
+
+    /// The event as logged.
+    pub(crate) fn event(&self) -> &Event {
+        &self.event
+    }
+
+    /// [`Event::center_f32`].
+    pub(crate) fn center_f32(&self) -> Vec2 {
+        self.center
+    }
+
+    /// [`Event::rim_f32`].
+    pub(crate) fn rim_f32(&self) -> f32 {
+        self.rim
+    }
+
+    /// [`Event::radius_at`].
+    pub(crate) fn radius_at(&self, tick: u32) -> Option<f32> {
+        self.event.radius_at_with(self.radius, tick)
+    }
+}
+
+impl Deref for Listed {
+    type Target = Event;
+
+    fn deref(&self) -> &Event {
+        &self.event
+    }
+}
 
 /// The indices (ascending) and copies of a cell's events; derefs to the indices.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct EventList {
     indices: Vec<u32>,
-    events: Vec<Event>,
+    events: Vec<Listed>,
 }
 
 impl Deref for EventList {
@@ -31,8 +84,8 @@ impl EventList {
     pub(crate) fn from_log(indices: &[u32], log: &[Event]) -> Option<EventList> {
         let events = indices
             .iter()
-            .map(|&i| log.get(i as usize).copied())
-            .collect::<Option<Vec<Event>>>()?;
+            .map(|&i| log.get(i as usize).copied().map(Listed::new))
+            .collect::<Option<Vec<Listed>>>()?;
         Some(EventList {
             indices: indices.to_vec(),
             events,
@@ -40,14 +93,14 @@ impl EventList {
     }
 
     /// The listed events, in list order (`events()[k]` is the log's event `self[k]`).
-    pub(crate) fn events(&self) -> &[Event] {
+    pub(crate) fn events(&self) -> &[Listed] {
         &self.events
     }
 
     /// Appends event `index` of the log, which is `event`.
     pub(crate) fn push(&mut self, index: u32, event: Event) {
         self.indices.push(index);
-        self.events.push(event);
+        self.events.push(Listed::new(event));
     }
 
     pub(crate) fn clear(&mut self) {
@@ -104,12 +157,32 @@ mod tests {
         list.push(1, log[1]);
         assert_eq!(&list[..], &[3, 4, 1]);
         let expected: Vec<Event> = list.iter().map(|&i| log[i as usize]).collect();
-        assert_eq!(list.events(), &expected[..]);
+        let copies: Vec<Event> = list.events().iter().map(|l| *l.event()).collect();
+        assert_eq!(copies, expected);
         list.renumber(&[0, 0, 0, 1, 2, 3]);
         assert_eq!(&list[..], &[1, 2, 0]);
-        assert_eq!(list.events(), &expected[..]);
+        let copies: Vec<Event> = list.events().iter().map(|l| *l.event()).collect();
+        assert_eq!(copies, expected);
         list.clear();
         assert!(list.is_empty() && list.events().is_empty());
         assert!(EventList::from_log(&[6], &log).is_none());
+    }
+
+    #[test]
+    fn cached_units_are_the_conversions_bits() {
+        let e = Event::carve(Vec2::new(1234.567, -89.0123), 40.004)
+            .and_then(|e| e.with_rim(3.3))
+            .expect("a valid event")
+            .with_growth(7)
+            .at_tick(5);
+        let l = Listed::new(e);
+        assert_eq!(l.center_f32(), e.center_f32());
+        assert_eq!(l.rim_f32().to_bits(), e.rim_f32().to_bits());
+        for tick in 0..20 {
+            assert_eq!(
+                l.radius_at(tick).map(f32::to_bits),
+                e.radius_at(tick).map(f32::to_bits)
+            );
+        }
     }
 }

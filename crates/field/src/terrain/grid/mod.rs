@@ -26,7 +26,7 @@ pub use cell::{CellState, GridStats, MaterialSource};
 pub(in crate::terrain) use journal::Entry;
 use journal::Journal;
 pub use journal::{RollbackError, TerrainMark};
-pub(crate) use list::EventList;
+pub(crate) use list::{EventList, Listed};
 
 /// Most cells a grid may have, so that memory stays bounded.
 pub const MAX_CELLS: u64 = 4_000_000;
