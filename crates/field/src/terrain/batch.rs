@@ -309,7 +309,7 @@ impl<F: Sdf> Terrain<F> {
         let list = cell.and_then(|c| self.grid.stored_cell(c));
         for e in list
             .into_iter()
-            .flat_map(|c| c.events.events().iter().take(upto))
+            .flat_map(|c| c.events.listed().iter().take(upto))
         {
             if let Some(r) = e.radius_at(self.tick) {
                 out.push(Prepared {

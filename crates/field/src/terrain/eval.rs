@@ -103,7 +103,7 @@ impl<F: Sdf> Terrain<F> {
             // the list need not be read.
             return (d, mat);
         }
-        for e in c.events.events().iter().take(upto) {
+        for e in c.events.listed().iter().take(upto) {
             (d, mat) = apply_unless_top(d, mat, pn, e, self.tick, m);
         }
         (d, mat)

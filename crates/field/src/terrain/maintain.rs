@@ -131,7 +131,7 @@ impl<F: Sdf> Terrain<F> {
             let new_state = match e.kind {
                 EventKind::Fill => Some(CellState::Solid(e.material)),
                 EventKind::Carve => {
-                    let has_fill = (c.events.events().iter()).any(|x| x.kind == EventKind::Fill);
+                    let has_fill = (c.events.listed().iter()).any(|x| x.kind == EventKind::Fill);
                     if has_fill {
                         None
                     } else {
@@ -162,7 +162,7 @@ impl<F: Sdf> Terrain<F> {
         if last != idx {
             return;
         }
-        let list = c.events.events();
+        let list = c.events.listed();
         let mut drop_new = false;
         let mut drop: Vec<usize> = Vec::new();
         for pos in (0..list.len().saturating_sub(1)).rev() {
@@ -237,7 +237,7 @@ impl<F: Sdf> Terrain<F> {
         let Some(c) = self.grid.stored_cell(cell) else {
             return 0;
         };
-        (c.events.events().iter())
+        (c.events.listed().iter())
             .take_while(|e| e.is_settled(self.tick))
             .count()
     }
@@ -303,7 +303,7 @@ mod tests {
         let images = t.grid.journal_cell_images();
         for (k, c) in t.grid.stored_cells().iter().chain(images).enumerate() {
             let named: Vec<Event> = c.events.iter().map(|&i| t.events[i as usize]).collect();
-            let copies: Vec<Event> = c.events.events().iter().map(|l| *l.event()).collect();
+            let copies: Vec<Event> = c.events.listed().iter().map(|l| *l.event()).collect();
             assert_eq!(copies, named, "list {k} {when}");
         }
     }

@@ -106,7 +106,7 @@ impl<F: Sdf> Terrain<F> {
         };
         // The same walk as `rect_sign_of`, reading the list in place: one question about a
         // cell allocates nothing.
-        let discs = c.events.events().iter().filter_map(|e| self.disc(e));
+        let discs = c.events.listed().iter().filter_map(|e| self.disc(e));
         let start = self.proof_start(cell);
         self.sign_over(discs, start, cell, min, max, above, Some(below))
     }
@@ -123,7 +123,7 @@ impl<F: Sdf> Terrain<F> {
         // A list that never held a fill (`may_fill`) holds carves only, unread.
         if let Start::Range(lo, _) = start
             && lo >= above
-            && (!c.may_fill || c.events.events().iter().all(|e| e.kind == EventKind::Carve))
+            && (!c.may_fill || c.events.listed().iter().all(|e| e.kind == EventKind::Carve))
         {
             return true;
         }
@@ -132,7 +132,7 @@ impl<F: Sdf> Terrain<F> {
             // could save: bricks hold surfaces, and the march crosses them anyway.
             return false;
         }
-        let discs = c.events.events().iter().filter_map(|e| self.disc(e));
+        let discs = c.events.listed().iter().filter_map(|e| self.disc(e));
         let sign = self.sign_over(discs, start, cell, min, max, above, None);
         sign == RectSign::Above
     }
@@ -144,7 +144,7 @@ impl<F: Sdf> Terrain<F> {
         let c = self.grid.stored_cell(cell)?;
         let discs = c
             .events
-            .events()
+            .listed()
             .iter()
             .filter_map(|e| self.disc(e))
             .collect();
@@ -372,7 +372,7 @@ impl<F: Sdf> Terrain<F> {
         let start = self.start_material(cell)?;
         let c = self.grid.stored_cell(cell)?;
         let all_same =
-            (c.events.events().iter()).all(|e| e.kind == EventKind::Carve || e.material == start);
+            (c.events.listed().iter()).all(|e| e.kind == EventKind::Carve || e.material == start);
         all_same.then_some(start)
     }
 
@@ -429,7 +429,7 @@ impl<F: Sdf> Terrain<F> {
         let pn = V2::new(p.x, p.y);
         let (mut d, _) = self.eval_cell::<f32, false>(p, cell, 0);
         let (mut mat, mut margin) = (start, f32::INFINITY);
-        for e in c.events.events() {
+        for e in c.events.listed() {
             if let (EventKind::Fill, Some(r)) = (e.kind, e.radius_at(self.tick)) {
                 // `c` exactly as `apply_event` computes it, so `wins` is its decision.
                 let c = pn.minus(e.center_f32()).length().offset(-r);

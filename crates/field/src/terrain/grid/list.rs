@@ -2,9 +2,9 @@
 //! the cell, in order, with a copy of each event beside its index.
 //!
 //! Queries, bakes and the pruning of a new event read every listed event; through the
-//! indices alone each read lands somewhere in a log of thousands of events, and the
-//! profile of an insert showed most of its pruning waiting on those loads. The copies make
-//! the reads one sequential pass. Events never change once logged (compaction only
+//! indices alone each read lands somewhere in a log of thousands of events, where the
+//! profile of an insert's pruning and of a near-surface query put much of their time. The
+//! copies make the reads one sequential pass. Events never change once logged (compaction only
 //! renumbers them), so a copy stays equal to the log's event for as long as it is listed.
 
 use std::ops::Deref;
@@ -92,8 +92,8 @@ impl EventList {
         })
     }
 
-    /// The listed events, in list order (`events()[k]` is the log's event `self[k]`).
-    pub(crate) fn events(&self) -> &[Listed] {
+    /// The listed events, in list order (`listed()[k]` is the log's event `self[k]`).
+    pub(crate) fn listed(&self) -> &[Listed] {
         &self.events
     }
 
@@ -157,14 +157,14 @@ mod tests {
         list.push(1, log[1]);
         assert_eq!(&list[..], &[3, 4, 1]);
         let expected: Vec<Event> = list.iter().map(|&i| log[i as usize]).collect();
-        let copies: Vec<Event> = list.events().iter().map(|l| *l.event()).collect();
+        let copies: Vec<Event> = list.listed().iter().map(|l| *l.event()).collect();
         assert_eq!(copies, expected);
         list.renumber(&[0, 0, 0, 1, 2, 3]);
         assert_eq!(&list[..], &[1, 2, 0]);
-        let copies: Vec<Event> = list.events().iter().map(|l| *l.event()).collect();
+        let copies: Vec<Event> = list.listed().iter().map(|l| *l.event()).collect();
         assert_eq!(copies, expected);
         list.clear();
-        assert!(list.is_empty() && list.events().is_empty());
+        assert!(list.is_empty() && list.listed().is_empty());
         assert!(EventList::from_log(&[6], &log).is_none());
     }
 
