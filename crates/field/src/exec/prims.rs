@@ -245,7 +245,6 @@ pub(crate) fn height_profile<L: Lanes, V: Val<L>>(l: L, p: P2<V>, prm: Params<'_
     }
     let dx = prm.f(1);
     let pt = |i: usize| prm.v2(2 + 2 * i);
-    let inv = |i: usize| prm.f(2 + 2 * n + i);
     let (first, last) = (pt(0), pt(n - 1));
     let segments = n - 1;
     let (px, py) = (p.x.v(), p.y.v());
@@ -277,16 +276,50 @@ pub(crate) fn height_profile<L: Lanes, V: Val<L>>(l: L, p: P2<V>, prm: Params<'_
     let w = L::WIDTH;
     let start = los[..w].iter().fold(f32::INFINITY, |m, &v| m.min(v)) as usize;
     let end = his[..w].iter().fold(0.0f32, |m, &v| m.max(v)) as usize;
-    for i in start..=end.min(segments - 1) {
-        let a = pt(i);
-        let e = pt(i + 1) - a;
-        let fi = l.splat(i as f32);
-        let active = l.and(l.le(lo, fi), l.le(fi, hi));
-        let s = segment_distance_squared(l, p.minus(l, a), e, inv(i));
-        d2 = V::select(l, active, d2.min(l, s), d2);
+    let end = end.min(segments - 1);
+    // The segments' words as slices, read in one pass: this loop is most of a profile's
+    // cost (a point within the band of the ground reads up to 18 segments), and reading
+    // each word through `Params` checked it against the tape's length every time.
+    let words = (start <= end)
+        .then(|| {
+            let points = prm.0.get(2 + 2 * start..2 + 2 * (end + 2))?;
+            let inverses = prm.0.get(2 + 2 * n + start..2 + 2 * n + end + 1)?;
+            Some((points, inverses))
+        })
+        .flatten();
+    // A tape shorter than its count says (the compiler writes none) reads no segments.
+    let (points, inverses) = words.unwrap_or((&[], &[]));
+    let word = |i: usize| f32::from_bits(points[i]);
+    for (k, &inv_e2) in inverses.iter().enumerate() {
+        let a = Vec2::new(word(2 * k), word(2 * k + 1));
+        let b = Vec2::new(word(2 * k + 2), word(2 * k + 3));
+        let inv_e2 = f32::from_bits(inv_e2);
+        d2 = nearer_segment(l, p, d2, (lo, hi), start + k, (a, b), inv_e2);
     }
     let d = d2.sqrt(l);
     V::select(l, l.lt(py, ground), d.neg(l), d)
+}
+
+/// `d2` lowered to segment `i`'s (from `a` to `b`) squared distance in the lanes whose
+/// segment range `lo..=hi` holds it.
+#[inline(always)]
+fn nearer_segment<L: Lanes, V: Val<L>>(
+    l: L,
+    p: P2<V>,
+    d2: V,
+    (lo, hi): (L::F, L::F),
+    i: usize,
+    (a, b): (Vec2, Vec2),
+    inv_e2: f32,
+) -> V {
+    let s = segment_distance_squared(l, p.minus(l, a), b - a, inv_e2);
+    if L::WIDTH == 1 {
+        // One lane: the loop's range is the lane's own, so every segment is in it.
+        return d2.min(l, s);
+    }
+    let fi = l.splat(i as f32);
+    let active = l.and(l.le(lo, fi), l.le(fi, hi));
+    V::select(l, active, d2.min(l, s), d2)
 }
 
 /// [`height_profile`] at one point, reading the parameter words in place: the
