@@ -80,6 +80,27 @@ impl Rect {
         let dy = (self.min[1] - c[1]).max(0.0).max(c[1] - self.max[1]);
         (dx * dx + dy * dy).sqrt()
     }
+    /// `self.near_dist(c) <= limit`, the same decision, with the square root taken only
+    /// where the squares are too close to tell: `sqrt` rounds correctly, so a squared
+    /// distance below `limit^2` by more than the rounding of the squares (`2^-50` of them
+    /// here, against `2^-52`) has its root at most `limit`, and one above it by as much has
+    /// its root above `limit` by more than half an ulp.
+    pub(crate) fn near_dist_at_most(&self, c: [f64; 2], limit: f64) -> bool {
+        let dx = (self.min[0] - c[0]).max(0.0).max(c[0] - self.max[0]);
+        let dy = (self.min[1] - c[1]).max(0.0).max(c[1] - self.max[1]);
+        let d2 = dx * dx + dy * dy;
+        let l2 = limit * limit;
+        const MARGIN: f64 = 1.0 / (1u64 << 50) as f64;
+        // A negative, NaN, infinite or tiny limit takes the root.
+        let squares_decide = limit >= 0.0 && l2.is_normal();
+        if squares_decide && d2 < l2 * (1.0 - MARGIN) {
+            true
+        } else if squares_decide && d2 > l2 * (1.0 + MARGIN) {
+            false
+        } else {
+            d2.sqrt() <= limit
+        }
+    }
     /// Distance from `c` to the farthest corner.
     pub(crate) fn far_dist(&self, c: [f64; 2]) -> f64 {
         let dx = (c[0] - self.min[0]).abs().max((c[0] - self.max[0]).abs());
@@ -250,6 +271,11 @@ impl Grid {
     /// The rectangle of cell `i` in `f64`.
     pub(crate) fn cell_rect(&self, i: usize) -> Rect {
         let (ix, iy) = self.coords(i);
+        self.rect_at(ix, iy)
+    }
+
+    /// The rectangle of the cell in column `ix`, row `iy`.
+    fn rect_at(&self, ix: u32, iy: u32) -> Rect {
         let s = f64::from(self.cell_size);
         let x0 = f64::from(self.origin.x) + f64::from(ix) * s;
         let y0 = f64::from(self.origin.y) + f64::from(iy) * s;
@@ -281,10 +307,11 @@ impl Grid {
         let mut out = Vec::with_capacity(((x1 - x0 + 1.0) * (y1 - y0 + 1.0)) as usize);
         for iy in (y0 as u32)..=(y1 as u32) {
             for ix in (x0 as u32)..=(x1 as u32) {
-                let i = iy as usize * self.nx as usize + ix as usize;
-                let rect = self.cell_rect(i);
-                if rect.near_dist(center) <= reach + 2.0 * guard(event_extent, &rect) {
-                    out.push(i);
+                // From the column and row: the index's division was a third of an insert's
+                // cell search.
+                let rect = self.rect_at(ix, iy);
+                if rect.near_dist_at_most(center, reach + 2.0 * guard(event_extent, &rect)) {
+                    out.push(iy as usize * self.nx as usize + ix as usize);
                 }
             }
         }
@@ -429,6 +456,59 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The squared test decides as the root does, on limits at the distance itself, one
+    /// ulp either side, and the edge values, over random rectangles and points.
+    #[test]
+    fn near_dist_at_most_is_the_roots_decision() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut unit = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut cases = 0;
+        for _ in 0..20_000 {
+            let (x0, y0) = (unit() * 4096.0 - 512.0, unit() * 1024.0 - 128.0);
+            let rect = Rect {
+                min: [x0, y0],
+                max: [x0 + 64.0, y0 + 64.0],
+            };
+            let c = [unit() * 4096.0 - 512.0, unit() * 1024.0 - 128.0];
+            let d = rect.near_dist(c);
+            let ulp = |x: f64, up: bool| {
+                let b = x.to_bits();
+                f64::from_bits(if up == (x >= 0.0) {
+                    b + 1
+                } else {
+                    b.saturating_sub(1)
+                })
+            };
+            let limits = [
+                d,
+                ulp(d, true),
+                ulp(d, false),
+                d * (1.0 + 1e-15),
+                d * (1.0 - 1e-15),
+                unit() * 200.0,
+                0.0,
+                -1.0,
+                f64::NAN,
+                f64::INFINITY,
+                1e-160,
+            ];
+            for limit in limits {
+                assert_eq!(
+                    rect.near_dist_at_most(c, limit),
+                    d <= limit,
+                    "{rect:?} {c:?} limit {limit:e}"
+                );
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 220_000);
+    }
 
     #[test]
     fn cell_lookup_never_goes_out_of_range() {
