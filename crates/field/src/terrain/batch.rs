@@ -35,20 +35,9 @@ struct Group {
     end: usize,
 }
 
-/// Groups point indices by cell. NaN points are left out (their result is fixed).
-fn group(
-    points: &[Vec2],
-    cell_of: impl Fn(Vec2) -> Option<usize>,
-    cells: usize,
-) -> (Vec<u32>, Vec<Group>) {
-    // Keys: a cell, `cells` for outside the grid, `cells + 1` for NaN.
-    let key = |p: Vec2| -> usize {
-        if p.x.is_nan() || p.y.is_nan() {
-            cells + 1
-        } else {
-            cell_of(p).unwrap_or(cells)
-        }
-    };
+/// Groups point indices by cell, from each point's key (see [`CellKeys`]). NaN points
+/// are left out (their result is fixed).
+fn group(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<Group>) {
     let group_of = |k: usize, start: usize, end: usize| {
         (k <= cells).then(|| Group {
             cell: (k < cells).then_some(k),
@@ -56,10 +45,9 @@ fn group(
             end,
         })
     };
-    if cells > points.len().saturating_mul(4) {
+    if cells > keys.len().saturating_mul(4) {
         // Few points on a large grid: a comparison sort, then runs of equal keys.
-        let keys: Vec<u32> = points.iter().map(|&p| key(p) as u32).collect();
-        let mut order: Vec<u32> = (0..points.len() as u32).collect();
+        let mut order: Vec<u32> = (0..keys.len() as u32).collect();
         order.sort_unstable_by_key(|&i| keys[i as usize]);
         let mut groups = Vec::new();
         let mut start = 0;
@@ -74,22 +62,19 @@ fn group(
         }
         return (order, groups);
     }
-    // A counting sort: keys and their counts in one pass, then placement; each key's
-    // range of the order is known from the counts.
+    // A counting sort: the keys counted, then placed; each key's range of the order is
+    // known from the counts.
     let mut counts = vec![0u32; cells + 3];
-    let keys: Vec<u32> = points
-        .iter()
-        .map(|&p| {
-            let k = key(p);
-            counts[k + 1] += 1;
-            k as u32
-        })
-        .collect();
+    for &k in keys {
+        if let Some(c) = counts.get_mut(k as usize + 1) {
+            *c += 1;
+        }
+    }
     for i in 1..counts.len() {
         counts[i] += counts[i - 1];
     }
     let starts = counts.clone();
-    let mut order = vec![0u32; points.len()];
+    let mut order = vec![0u32; keys.len()];
     for (i, &k) in keys.iter().enumerate() {
         order[counts[k as usize] as usize] = i as u32;
         counts[k as usize] += 1;
@@ -99,6 +84,77 @@ fn group(
         .filter_map(|k| group_of(k, starts[k] as usize, starts[k + 1] as usize))
         .collect();
     (order, groups)
+}
+
+/// A point's grouping key: its cell (`cell`, from [`Grid::cell_index`]), `cells` outside
+/// the grid, `cells + 1` for NaN.
+fn cell_key(p: Vec2, cell: Option<usize>, cells: usize) -> u32 {
+    if p.x.is_nan() || p.y.is_nan() {
+        (cells + 1) as u32
+    } else {
+        cell.unwrap_or(cells) as u32
+    }
+}
+
+/// Every point's [`cell_key`], the cell found on lanes: `Grid::cell_index`'s arithmetic
+/// (the same roundings, so the same cells), a lane register of points at a time. Looking
+/// the cells up one point at a time was a fifth of a batch of uniform points.
+struct CellKeys<'a> {
+    lookup: grid::Lookup,
+    cells: usize,
+    points: &'a [Vec2],
+    keys: &'a mut [u32],
+}
+
+impl Kernel for CellKeys<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<L: Lanes, const NB: usize>(self, l: L) {
+        let g = self.lookup;
+        // Cell counts are below 2^24 (`MAX_CELLS`): every index is exact in f32.
+        let (nx, ny) = (l.splat(g.nx as f32), l.splat(g.ny as f32));
+        let (last_x, last_y) = (l.splat((g.nx - 1) as f32), l.splat((g.ny - 1) as f32));
+        let zero = l.splat(0.0);
+        let (outside, nan) = (
+            l.splat_i(self.cells as i32),
+            l.splat_i(self.cells as i32 + 1),
+        );
+        let w = L::WIDTH;
+        let (mut xs, mut ys, mut ks) = ([0.0f32; 16], [0.0f32; 16], [0i32; 16]);
+        for (pts, out) in self.points.chunks(w).zip(self.keys.chunks_mut(w)) {
+            for (k, p) in pts.iter().enumerate() {
+                (xs[k], ys[k]) = (p.x, p.y);
+            }
+            let (x, y) = (l.load(&xs), l.load(&ys));
+            let (fx, fy) = (
+                in_cells(l, &g, x, g.origin.x),
+                in_cells(l, &g, y, g.origin.y),
+            );
+            let inside = l.and(
+                l.and(l.ge(fx, zero), l.lt(fx, nx)),
+                l.and(l.ge(fy, zero), l.lt(fy, ny)),
+            );
+            // Non-negative inside: the floor is the cast's truncation.
+            let ix = l.min(l.floor(fx), last_x);
+            let iy = l.min(l.floor(fy), last_y);
+            let cell = l.to_i32(l.add(l.mul(iy, nx), ix));
+            let is_number = l.and(l.le(x, x), l.le(y, y));
+            let key = l.select_i(is_number, l.select_i(inside, cell, outside), nan);
+            l.store_i(key, &mut ks);
+            for (o, &k) in out.iter_mut().zip(&ks) {
+                *o = k as u32;
+            }
+        }
+    }
+}
+
+/// `(v - o) / cell_size` as `Grid::cell_index` rounds it.
+#[inline(always)]
+fn in_cells<L: Lanes>(l: L, g: &grid::Lookup, v: L::F, o: f32) -> L::F {
+    match g.inv_pow2 {
+        Some(inv) => l.mul(l.sub(v, l.splat(o)), l.splat(inv)),
+        None => l.div(l.sub(v, l.splat(o)), l.splat(g.cell_size)),
+    }
 }
 
 /// What a lane block starts from before the cell's events.
@@ -263,7 +319,21 @@ impl<F: Sdf> Terrain<F> {
     }
 
     fn group(&self, points: &[Vec2]) -> (Vec<u32>, Vec<Group>) {
-        group(points, |p| self.grid.cell_index(p), self.grid.cell_count())
+        let cells = self.grid.cell_count();
+        let mut keys = vec![0u32; points.len()];
+        let kernel = CellKeys {
+            lookup: self.grid.lookup(),
+            cells,
+            points,
+            keys: &mut keys,
+        };
+        if simd::run(self.backend, kernel).is_err() {
+            // The backend was checked when it was set; this is the same lookup, per point.
+            for (k, &p) in keys.iter_mut().zip(points) {
+                *k = cell_key(p, self.grid.cell_index(p), cells);
+            }
+        }
+        group(&keys, cells)
     }
 
     /// How a group's lanes start (state and base).
@@ -835,4 +905,71 @@ fn brick<L: Lanes, V: Val<L>, F: Sdf>(
         mats[k] = i32::from(b.materials.get(at).copied().unwrap_or(0));
     }
     (d, l.load_i(&mats))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::grid::Grid;
+
+    /// On every backend the lanes find each point the cell `Grid::cell_index` finds: on cell
+    /// edges and one ulp either side, at the grid's edges, outside, and for NaN and
+    /// infinities, with a power-of-two cell size (multiplied by its inverse) and another
+    /// (divided).
+    #[test]
+    fn lane_keys_are_the_point_lookups() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u32 << 24) as f32
+        };
+        for (size, origin) in [
+            (64.0, Vec2::new(-100.0, 3.5)),
+            (48.3, Vec2::new(7.25, -60.0)),
+        ] {
+            let grid =
+                Grid::new(origin, origin + Vec2::new(4000.0, 1000.0), size, 8).expect("a grid");
+            let (nx, ny) = grid.dims();
+            let mut points = vec![
+                Vec2::new(f32::NAN, 0.0),
+                Vec2::new(0.0, f32::NAN),
+                Vec2::new(f32::INFINITY, 10.0),
+                Vec2::new(10.0, f32::NEG_INFINITY),
+                Vec2::new(-1e30, 1e30),
+                origin,
+            ];
+            for i in 0..=nx {
+                for j in [0, ny / 2, ny] {
+                    let edge = origin + Vec2::new(i as f32, j as f32) * size;
+                    for d in [-1i32, 0, 1] {
+                        let nudge = |v: f32| f32::from_bits((v.to_bits() as i32 + d) as u32);
+                        points.push(Vec2::new(nudge(edge.x), edge.y));
+                        points.push(Vec2::new(edge.x, nudge(edge.y)));
+                    }
+                }
+            }
+            for _ in 0..5000 {
+                points.push(origin + Vec2::new(unit() * 4200.0 - 100.0, unit() * 1200.0 - 100.0));
+            }
+            let cells = grid.cell_count();
+            let expected: Vec<u32> = (points.iter())
+                .map(|&p| cell_key(p, grid.cell_index(p), cells))
+                .collect();
+            for backend in Backend::available() {
+                let mut keys = vec![u32::MAX; points.len()];
+                let kernel = CellKeys {
+                    lookup: grid.lookup(),
+                    cells,
+                    points: &points,
+                    keys: &mut keys,
+                };
+                simd::run(backend, kernel).expect("an available backend");
+                for (k, (got, want)) in keys.iter().zip(&expected).enumerate() {
+                    assert_eq!(got, want, "{backend}: point {:?} (size {size})", points[k]);
+                }
+            }
+        }
+    }
 }

@@ -62,6 +62,17 @@ pub enum GridError {
     },
 }
 
+/// The grid's geometry as [`Grid::cell_index`] uses it (see [`Grid::lookup`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lookup {
+    pub(crate) origin: Vec2,
+    /// `1 / cell_size` when that is exact (see `Grid::inv_pow2`).
+    pub(crate) inv_pow2: Option<f32>,
+    pub(crate) cell_size: f32,
+    pub(crate) nx: u32,
+    pub(crate) ny: u32,
+}
+
 /// An axis-aligned rectangle in `f64`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Rect {
@@ -251,6 +262,17 @@ impl Grid {
         let ix = (fx as u32).min(self.nx - 1);
         let iy = (fy as u32).min(self.ny - 1);
         Some(iy as usize * self.nx as usize + ix as usize)
+    }
+
+    /// What [`Grid::cell_index`] computes with, for the same lookup on lanes.
+    pub(crate) fn lookup(&self) -> Lookup {
+        Lookup {
+            origin: self.origin,
+            inv_pow2: self.inv_pow2,
+            cell_size: self.cell_size,
+            nx: self.nx,
+            ny: self.ny,
+        }
     }
 
     /// Column and row of cell `i`.
