@@ -24,6 +24,8 @@ pub(crate) mod sdf;
 pub use craterfield_core::simd;
 pub mod tape;
 pub mod terrain;
+#[cfg(test)]
+pub(crate) mod test_rng;
 
 pub use aabb::Aabb;
 pub use craterfield_core::det::quant::{FIXED_ONE, QuantError};

@@ -918,13 +918,8 @@ mod tests {
     /// (divided).
     #[test]
     fn lane_keys_are_the_point_lookups() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u32 << 24) as f32
-        };
+        let mut unit_f64 = crate::test_rng::unit_f64(0x2545_f491_4f6c_dd1d);
+        let mut unit = || unit_f64() as f32;
         for (size, origin) in [
             (64.0, Vec2::new(-100.0, 3.5)),
             (48.3, Vec2::new(7.25, -60.0)),

@@ -483,13 +483,7 @@ mod tests {
     /// ulp either side, and the edge values, over random rectangles and points.
     #[test]
     fn near_dist_at_most_is_the_roots_decision() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut unit = crate::test_rng::unit_f64(0x9e37_79b9_7f4a_7c15);
         let mut cases = 0;
         for _ in 0..20_000 {
             let (x0, y0) = (unit() * 4096.0 - 512.0, unit() * 1024.0 - 128.0);
