@@ -66,9 +66,7 @@ fn group(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<Group>) {
     // known from the counts.
     let mut counts = vec![0u32; cells + 3];
     for &k in keys {
-        if let Some(c) = counts.get_mut(k as usize + 1) {
-            *c += 1;
-        }
+        counts[k as usize + 1] += 1;
     }
     for i in 1..counts.len() {
         counts[i] += counts[i - 1];

@@ -87,9 +87,13 @@ impl Rect {
     }
     /// Distance from `c` to the nearest point of the rectangle (0 inside).
     pub(crate) fn near_dist(&self, c: [f64; 2]) -> f64 {
+        self.near_dist_squared(c).sqrt()
+    }
+    /// The square of [`Rect::near_dist`], before its root.
+    fn near_dist_squared(&self, c: [f64; 2]) -> f64 {
         let dx = (self.min[0] - c[0]).max(0.0).max(c[0] - self.max[0]);
         let dy = (self.min[1] - c[1]).max(0.0).max(c[1] - self.max[1]);
-        (dx * dx + dy * dy).sqrt()
+        dx * dx + dy * dy
     }
     /// `self.near_dist(c) <= limit`, the same decision, with the square root taken only
     /// where the squares are too close to tell: `sqrt` rounds correctly, so a squared
@@ -97,9 +101,7 @@ impl Rect {
     /// here, against `2^-52`) has its root at most `limit`, and one above it by as much has
     /// its root above `limit` by more than half an ulp.
     pub(crate) fn near_dist_at_most(&self, c: [f64; 2], limit: f64) -> bool {
-        let dx = (self.min[0] - c[0]).max(0.0).max(c[0] - self.max[0]);
-        let dy = (self.min[1] - c[1]).max(0.0).max(c[1] - self.max[1]);
-        let d2 = dx * dx + dy * dy;
+        let d2 = self.near_dist_squared(c);
         let l2 = limit * limit;
         const MARGIN: f64 = 1.0 / (1u64 << 50) as f64;
         // A negative, NaN, infinite or tiny limit takes the root.
@@ -329,8 +331,7 @@ impl Grid {
         let mut out = Vec::with_capacity(((x1 - x0 + 1.0) * (y1 - y0 + 1.0)) as usize);
         for iy in (y0 as u32)..=(y1 as u32) {
             for ix in (x0 as u32)..=(x1 as u32) {
-                // From the column and row: the index's division was a third of an insert's
-                // cell search.
+                // From the column and row, not the index: that would divide per cell.
                 let rect = self.rect_at(ix, iy);
                 if rect.near_dist_at_most(center, reach + 2.0 * guard(event_extent, &rect)) {
                     out.push(iy as usize * self.nx as usize + ix as usize);
@@ -484,7 +485,6 @@ mod tests {
     #[test]
     fn near_dist_at_most_is_the_roots_decision() {
         let mut unit = crate::test_rng::unit_f64(0x9e37_79b9_7f4a_7c15);
-        let mut cases = 0;
         for _ in 0..20_000 {
             let (x0, y0) = (unit() * 4096.0 - 512.0, unit() * 1024.0 - 128.0);
             let rect = Rect {
@@ -520,10 +520,8 @@ mod tests {
                     d <= limit,
                     "{rect:?} {c:?} limit {limit:e}"
                 );
-                cases += 1;
             }
         }
-        assert_eq!(cases, 220_000);
     }
 
     #[test]
