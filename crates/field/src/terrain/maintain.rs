@@ -62,7 +62,6 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
-    /// Lists event `idx` in every cell it can reach, then prunes those cells.
     /// The cells whose lists an event joins.
     pub(super) fn cells_of(&self, e: &Event) -> Vec<usize> {
         let band = f64::from(self.options.band);
@@ -72,22 +71,35 @@ impl<F: Sdf> Terrain<F> {
         self.grid.cells_touching(center, reach, extent)
     }
 
-    /// The first cell `e` would join whose list is already `max_cell_events` long.
-    pub(super) fn full_cell_for(&self, e: &Event) -> Option<usize> {
+    /// The cells `e` joins, or the first of them whose list is already `max_cell_events`
+    /// long (`Err`).
+    pub(super) fn cells_joined(&self, e: &Event) -> Result<Vec<usize>, usize> {
         let max = self.options.max_cell_events;
-        self.cells_of(e).into_iter().find(|&cell| {
+        let cells = self.cells_of(e);
+        let full = cells.iter().copied().find(|&cell| {
             self.grid
                 .stored_cell(cell)
                 .is_some_and(|c| c.events.len() >= max)
-        })
+        });
+        match full {
+            Some(cell) => Err(cell),
+            None => Ok(cells),
+        }
     }
 
+    /// Lists logged event `idx` in every cell it can reach, then prunes those cells.
     pub(super) fn insert(&mut self, idx: u32) {
-        let Some(e) = self.events.get(idx as usize).copied() else {
-            return;
-        };
+        if let Some(e) = self.events.get(idx as usize).copied() {
+            let cells = self.cells_of(&e);
+            self.insert_into(idx, e, &cells);
+        }
+    }
+
+    /// [`Terrain::insert`] of logged event `idx` (`e`) into `cells`, its
+    /// [`Terrain::cells_of`].
+    pub(super) fn insert_into(&mut self, idx: u32, e: Event, cells: &[usize]) {
         let settled_at = e.tick.saturating_add(u32::from(e.grow_ticks));
-        for cell in self.cells_of(&e) {
+        for &cell in cells {
             if let Some(c) = self.begin_cell_change(cell) {
                 c.events.push(idx, e);
                 c.may_fill |= e.kind == EventKind::Fill;

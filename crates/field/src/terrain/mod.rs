@@ -211,18 +211,23 @@ impl<F: Sdf> Terrain<F> {
     /// Checks `e` against the options and bounds without changing anything.
     pub fn validate_event(&self, e: &Event) -> Result<(), TerrainError> {
         self.check_event(e)?;
-        if let Some(cell) = self.full_cell_for(e) {
+        self.cells_with_room(e).map(drop)
+    }
+
+    /// The cells `e` joins, or [`TerrainError::CellFull`] at the first of them whose list
+    /// is already `max_cell_events` long.
+    fn cells_with_room(&self, e: &Event) -> Result<Vec<usize>, TerrainError> {
+        self.cells_joined(e).map_err(|cell| {
             let r = self.grid.cell_rect(cell);
             let at = glam::Vec2::new(
                 ((r.min[0] + r.max[0]) * 0.5) as f32,
                 ((r.min[1] + r.max[1]) * 0.5) as f32,
             );
-            return Err(TerrainError::CellFull {
+            TerrainError::CellFull {
                 at,
                 max: self.options.max_cell_events,
-            });
-        }
-        Ok(())
+            }
+        })
     }
 
     /// The checks of an event on its own: valid, within the options' sizes and the bounds,
@@ -265,7 +270,9 @@ impl<F: Sdf> Terrain<F> {
     /// Applies an event. On error nothing changes. When the log is full
     /// ([`TerrainOptions::max_events`]) it is compacted first, which changes no query.
     pub fn apply(&mut self, e: Event) -> Result<(), TerrainError> {
-        self.validate_event(&e)?;
+        self.check_event(&e)?;
+        // Found once: compacting the log renumbers events but moves no cell.
+        let cells = self.cells_with_room(&e)?;
         self.compact_if_full();
         if self.events.len() >= u32::MAX as usize {
             return Err(TerrainError::LogFull {
@@ -275,7 +282,7 @@ impl<F: Sdf> Terrain<F> {
         let idx = self.events.len() as u32;
         self.events.push(e);
         self.grid.record_event();
-        self.insert(idx);
+        self.insert_into(idx, e, &cells);
         Ok(())
     }
 
