@@ -7,7 +7,7 @@
 use std::ops::Range;
 
 use super::grid::{self, Brick, CellState, MaterialSource};
-use super::{Terrain, take_revision};
+use super::{Terrain, TerrainError, take_revision};
 use crate::event::{Event, EventKind};
 use crate::sdf::Sdf;
 use craterfield_core::det::quant::FIXED_ONE;
@@ -71,9 +71,9 @@ impl<F: Sdf> Terrain<F> {
         self.grid.cells_touching(center, reach, extent)
     }
 
-    /// The cells `e` joins, or the first of them whose list is already `max_cell_events`
-    /// long (`Err`).
-    pub(super) fn cells_joined(&self, e: &Event) -> Result<Vec<usize>, usize> {
+    /// The cells `e` joins, or [`TerrainError::CellFull`] at the first of them whose list
+    /// is already `max_cell_events` long.
+    pub(super) fn cells_with_room(&self, e: &Event) -> Result<Vec<usize>, TerrainError> {
         let max = self.options.max_cell_events;
         let cells = self.cells_of(e);
         let full = cells.iter().copied().find(|&cell| {
@@ -81,10 +81,15 @@ impl<F: Sdf> Terrain<F> {
                 .stored_cell(cell)
                 .is_some_and(|c| c.events.len() >= max)
         });
-        match full {
-            Some(cell) => Err(cell),
-            None => Ok(cells),
-        }
+        let Some(cell) = full else {
+            return Ok(cells);
+        };
+        let r = self.grid.cell_rect(cell);
+        let at = glam::Vec2::new(
+            ((r.min[0] + r.max[0]) * 0.5) as f32,
+            ((r.min[1] + r.max[1]) * 0.5) as f32,
+        );
+        Err(TerrainError::CellFull { at, max })
     }
 
     /// Lists logged event `idx` in every cell it can reach, then prunes those cells.

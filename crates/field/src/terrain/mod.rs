@@ -214,22 +214,6 @@ impl<F: Sdf> Terrain<F> {
         self.cells_with_room(e).map(drop)
     }
 
-    /// The cells `e` joins, or [`TerrainError::CellFull`] at the first of them whose list
-    /// is already `max_cell_events` long.
-    fn cells_with_room(&self, e: &Event) -> Result<Vec<usize>, TerrainError> {
-        self.cells_joined(e).map_err(|cell| {
-            let r = self.grid.cell_rect(cell);
-            let at = glam::Vec2::new(
-                ((r.min[0] + r.max[0]) * 0.5) as f32,
-                ((r.min[1] + r.max[1]) * 0.5) as f32,
-            );
-            TerrainError::CellFull {
-                at,
-                max: self.options.max_cell_events,
-            }
-        })
-    }
-
     /// The checks of an event on its own: valid, within the options' sizes and the bounds,
     /// of a known material.
     fn check_event(&self, e: &Event) -> Result<(), TerrainError> {
