@@ -7,11 +7,33 @@ use glam::Vec2;
 use super::Terrain;
 use super::cell_tapes::{CellTape, CellTapes};
 use super::field::{Lift, apply_event, apply_unless_top};
-use super::grid::{CellState, MaterialSource};
+use super::grid::{Cell, CellState, MaterialSource};
+use crate::event::EventKind;
 use crate::exec;
 use crate::sample::{MaterialId, Sample};
 use crate::sdf::{ClearRun, Sdf};
-use craterfield_core::det::math::{Dual, max, nclamp};
+use craterfield_core::det::math::{Dual, Num, V2, max, nclamp};
+
+/// Whether `nmax(a, b)` keeps `a`: only where `a > b` (a tie or a NaN takes `b`).
+fn max_keeps(a: f32, b: f32) -> bool {
+    a > b
+}
+
+/// Whether `nmin(a, b)` keeps `a`: only where `a < b`.
+fn min_keeps(a: f32, b: f32) -> bool {
+    a < b
+}
+
+/// The term a value computed on `f32` came from ([`Terrain::sample_cell`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Term {
+    /// A constant of the clamp (or a constant state): gradient `+0`.
+    Flat,
+    /// The cell state's base or brick.
+    State,
+    /// The listed event at this position.
+    Event(usize),
+}
 
 impl<F: Sdf> Terrain<F> {
     /// The base's tapes at `p` in `cell` (`None`: outside the grid, its halo tile).
@@ -109,6 +131,140 @@ impl<F: Sdf> Terrain<F> {
         (d, mat)
     }
 
+    /// [`Sdf::sample`]: in a grid cell, on values with the gradient of the winning term
+    /// alone ([`Terrain::sample_cell`]); elsewhere, and in a cell whose list blends, on
+    /// duals throughout.
+    fn sample_at(&self, p: Vec2) -> (Dual, MaterialId) {
+        (self.grid.cell_index(p))
+            .and_then(|cell| self.sample_cell(p, cell))
+            .unwrap_or_else(|| self.eval::<Dual, true>(p))
+    }
+
+    /// The sample at `p` in `cell` computed on `f32` values, with the gradient taken at the
+    /// end from the term the value came from; `None` where a smooth event would blend (and
+    /// without cell tapes), for the dual path instead.
+    ///
+    /// Without smooth terms every step of the field picks one of its operands (`max`,
+    /// `min` and the clamp select; they do not blend), and on duals it picks by the
+    /// values alone, which are the `f32` path's bits. So the dual result is the picked
+    /// term's dual: the state's (its base or brick, evaluated on duals only when it wins),
+    /// an event's `-c` or `c` (evaluated on duals as [`apply_event`] evaluates it), or a
+    /// constant of the clamp, whose gradient is `+0`. Every listed event's square root,
+    /// division and gradient arithmetic is thus done once, for the winner, instead of on
+    /// duals for every event.
+    pub(super) fn sample_cell(&self, p: Vec2, cell: usize) -> Option<(Dual, MaterialId)> {
+        let c = self.grid.stored_cell(cell)?;
+        let (d, mat, from) = self.pick_term(p, cell, c)?;
+        let dual = match from {
+            Term::Flat => <Dual as Num>::constant(d),
+            Term::State => self.state_dual(p, cell, c.state.0)?,
+            Term::Event(i) => {
+                let e = c.events.listed().get(i)?;
+                let r = e.radius_at(self.tick)?;
+                let cv = <Dual as Lift>::point(p)
+                    .minus(e.center_f32())
+                    .length()
+                    .offset(-r);
+                if e.kind == EventKind::Carve { -cv } else { cv }
+            }
+        };
+        debug_assert_eq!(dual.v.to_bits(), d.to_bits(), "the picked term's value");
+        Some((dual, mat))
+    }
+
+    /// The value pass of [`Terrain::sample_cell`]: the field's value and material at `p`
+    /// in cell `c` (index `cell`), and the term the value came from.
+    fn pick_term(&self, p: Vec2, cell: usize, c: &Cell) -> Option<(f32, MaterialId, Term)> {
+        let m = self.options.band;
+        let (mut d, mut mat, mut from) = self.state_value(p, cell, c.state.0)?;
+        if !c.may_fill && d == m && from == Term::Flat {
+            // Only carves follow, and none changes the top (as in `eval_cell`).
+            return Some((d, mat, from));
+        }
+        let pv = V2::new(p.x, p.y);
+        for (i, e) in c.events.listed().iter().enumerate() {
+            let carve = e.kind == EventKind::Carve;
+            if carve && d == m && from == Term::Flat {
+                // The dual path's `is_top`. At a state's own `+M`, whose gradient may not
+                // be `+0`, the carve is applied: it ends at the clamp's `+M`, which is
+                // what the dual path gives there either way.
+                continue;
+            }
+            let Some(r) = e.radius_at(self.tick) else {
+                continue;
+            };
+            if e.rim_f32() > 0.0 {
+                return None;
+            }
+            let cv = pv.minus(e.center_f32()).length().offset(-r);
+            if carve && !max_keeps(d, -cv) {
+                (d, from) = (-cv, Term::Event(i));
+            } else if !carve && !min_keeps(d, cv) {
+                (d, mat, from) = (cv, e.material, Term::Event(i));
+            }
+            // `nclamp`: each bound replaces a value not strictly inside it.
+            if !max_keeps(d, -m) {
+                (d, from) = (-m, Term::Flat);
+            }
+            if !min_keeps(d, m) {
+                (d, from) = (m, Term::Flat);
+            }
+        }
+        Some((d, mat, from))
+    }
+
+    /// A cell state's value and material at `p`, as [`Terrain::eval_cell`] starts from
+    /// them, and whether the value is a constant (`Flat`: the band's edges, air, solid) or
+    /// the state's own term; `None` without cell tapes (the dual path answers).
+    fn state_value(
+        &self,
+        p: Vec2,
+        cell: usize,
+        state: CellState,
+    ) -> Option<(f32, MaterialId, Term)> {
+        let m = self.options.band;
+        match state {
+            CellState::Base => {
+                let plan = self.cell_tapes.as_ref()?.get(&self.grid, Some(cell));
+                if let Some(c) = plan.clamped {
+                    return Some((c, exec::point::material(&plan.material, p), Term::Flat));
+                }
+                let (v, mat) = exec::point::value(&plan.material, p);
+                // `nclamp`, which gives its bounds as constants.
+                Some(if !max_keeps(v, -m) {
+                    (-m, mat, Term::Flat)
+                } else if !min_keeps(v, m) {
+                    (m, mat, Term::Flat)
+                } else {
+                    (v, mat, Term::State)
+                })
+            }
+            CellState::Air(src) => {
+                let mat = match src {
+                    MaterialSource::Base => self.base_material_at(p, Some(cell)),
+                    MaterialSource::Constant(m) => m,
+                    MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
+                };
+                Some((m, mat, Term::Flat))
+            }
+            CellState::Solid(mat) => Some((-m, mat, Term::Flat)),
+            CellState::Brick(id) => {
+                let (v, mat) = (self.grid).interpolate::<f32>(id, cell, V2::new(p.x, p.y), true)?;
+                Some((v, mat, Term::State))
+            }
+        }
+    }
+
+    /// The state's own term at `p` on duals (where [`Terrain::state_value`] said `State`).
+    fn state_dual(&self, p: Vec2, cell: usize, state: CellState) -> Option<Dual> {
+        match state {
+            CellState::Brick(id) => (self.grid)
+                .interpolate::<Dual>(id, cell, <Dual as Lift>::point(p), false)
+                .map(|(d, _)| d),
+            _ => Some(self.base_clamped::<Dual, true>(p, Some(cell)).0),
+        }
+    }
+
     pub(super) fn eval<N: Lift, const MAT: bool>(&self, p: Vec2) -> (N, MaterialId) {
         if p.x.is_nan() || p.y.is_nan() {
             return (N::constant(f32::NAN), 0);
@@ -160,7 +316,7 @@ impl<F: Sdf> Sdf for Terrain<F> {
     }
 
     fn sample(&self, p: Vec2) -> Sample {
-        let (d, material) = self.eval::<Dual, true>(p);
+        let (d, material) = self.sample_at(p);
         Sample {
             distance: d.v,
             gradient: d.gradient(),
@@ -174,5 +330,121 @@ impl<F: Sdf> Sdf for Terrain<F> {
 
     fn clear_run(&self, p: Vec2, dir: Vec2, above: f32) -> ClearRun {
         self.clear_run_from(p, dir, above)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec2;
+
+    use super::Term;
+    use crate::terrain::{CellState, Terrain};
+    use crate::{Event, Graph, Level};
+    use craterfield_core::det::math::Dual;
+
+    /// Random events on the default level: carves and fills, some wide enough to reset
+    /// cells, a tenth smooth, a tenth growing, with ticks advancing, lists short enough
+    /// to bake bricks.
+    fn cratered(seed: u64, smooth: bool) -> Terrain<Graph> {
+        let level = Level::default_level();
+        let b = level.bounds();
+        let mut o = level.terrain_options();
+        o.cell_cap = 8;
+        o.brick_resolution = 8;
+        let mut t = Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
+        let mut unit = crate::test_rng::unit_f64(seed);
+        for k in 0..700u32 {
+            let c = Vec2::new(
+                1100.0 + unit() as f32 * 500.0,
+                350.0 + unit() as f32 * 400.0,
+            );
+            // One in twenty wide enough to cover a cell: resets to air or solid.
+            let wide = unit() < 0.05;
+            let r = if wide { 100.0 } else { 4.0 } + unit() as f32 * 60.0;
+            let mut e = if unit() < 0.2 {
+                Event::fill(c, r, (k % 3) as u16).unwrap()
+            } else {
+                Event::carve(c, r).unwrap()
+            };
+            if smooth && unit() < 0.1 {
+                e = e.with_rim(unit() as f32 * 6.0).unwrap();
+            }
+            if unit() < 0.1 {
+                e = e.with_growth(1 + k as u16 % 5);
+            }
+            t.apply(e.at_tick(t.tick())).unwrap();
+            if k % 3 == 0 {
+                t.set_tick(t.tick() + 1).unwrap();
+            }
+        }
+        t
+    }
+
+    /// The sample on values with the winner's gradient has every bit of the sample on
+    /// duals (value, gradient, material), in every kind of cell, where each kind of term
+    /// wins, at random points, at lattice points and on cell edges; and the fast path
+    /// answered most of them.
+    #[test]
+    fn samples_on_values_are_the_dual_samples() {
+        for (seed, smooth) in [(0x5a17_u64, false), (0xd0a1, true)] {
+            let t = cratered(seed, smooth);
+            let mut unit = crate::test_rng::unit_f64(seed ^ 0x77);
+            let size = t.grid().cell_size();
+            let h = t.grid().brick_spacing();
+            let mut points: Vec<Vec2> = (0..40_000)
+                .map(|_| {
+                    Vec2::new(
+                        1000.0 + unit() as f32 * 700.0,
+                        300.0 + unit() as f32 * 500.0,
+                    )
+                })
+                .collect();
+            let origin = t.grid().origin();
+            for i in 0..200 {
+                let q = Vec2::new(
+                    1000.0 + unit() as f32 * 700.0,
+                    300.0 + unit() as f32 * 500.0,
+                );
+                let snap = |v: f32, o: f32, s: f32| o + ((v - o) / s).round() * s;
+                let lattice = Vec2::new(snap(q.x, origin.x, h), snap(q.y, origin.y, h));
+                let edge = Vec2::new(snap(q.x, origin.x, size), q.y + i as f32 * 0.01);
+                points.extend([lattice, edge, edge.with_y(snap(q.y, origin.y, size))]);
+            }
+            let (mut fast, mut winners) = (0, [0usize; 3]);
+            let mut states = [0usize; 4];
+            for &p in &points {
+                let expected = t.eval::<Dual, true>(p);
+                let got = t.sample_at(p);
+                let bits = |(d, m): (Dual, u16)| (d.v.to_bits(), d.dx.to_bits(), d.dy.to_bits(), m);
+                assert_eq!(bits(got), bits(expected), "at {p:?} (seed {seed:#x})");
+                let Some(cell) = t.grid.cell_index(p) else {
+                    continue;
+                };
+                if t.sample_cell(p, cell).is_some() {
+                    fast += 1;
+                    let state = t.grid.stored_cell(cell).unwrap().state.0;
+                    states[match state {
+                        CellState::Base => 0,
+                        CellState::Air(_) => 1,
+                        CellState::Solid(_) => 2,
+                        CellState::Brick(_) => 3,
+                    }] += 1;
+                    let c = t.grid.stored_cell(cell).unwrap();
+                    let (_, _, from) = t.pick_term(p, cell, c).unwrap();
+                    winners[match from {
+                        Term::Flat => 0,
+                        Term::State => 1,
+                        Term::Event(_) => 2,
+                    }] += 1;
+                }
+            }
+            assert!(
+                fast > points.len() / 2,
+                "{fast} of {} on values",
+                points.len()
+            );
+            assert!(winners.iter().all(|&n| n > 100), "winners {winners:?}");
+            assert!(states.iter().all(|&n| n > 100), "states {states:?}");
+        }
     }
 }
