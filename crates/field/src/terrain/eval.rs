@@ -88,6 +88,15 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
+    /// The material of an air cell's state at `p` in `cell` (carves keep what was there).
+    fn air_material(&self, src: MaterialSource, p: Vec2, cell: usize) -> MaterialId {
+        match src {
+            MaterialSource::Base => self.base_material_at(p, Some(cell)),
+            MaterialSource::Constant(m) => m,
+            MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
+        }
+    }
+
     /// The field at `p` in `cell` from the cell's state and the first `upto` listed events.
     pub(super) fn eval_cell<N: Lift, const MAT: bool>(
         &self,
@@ -104,11 +113,7 @@ impl<F: Sdf> Terrain<F> {
             CellState::Base => self.base_clamped::<N, MAT>(p, Some(cell)),
             CellState::Air(src) => {
                 let mat = if N::MATERIAL || MAT {
-                    match src {
-                        MaterialSource::Base => self.base_material_at(p, Some(cell)),
-                        MaterialSource::Constant(m) => m,
-                        MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
-                    }
+                    self.air_material(src, p, cell)
                 } else {
                     0
                 };
@@ -239,14 +244,7 @@ impl<F: Sdf> Terrain<F> {
                     (v, mat, Term::State)
                 })
             }
-            CellState::Air(src) => {
-                let mat = match src {
-                    MaterialSource::Base => self.base_material_at(p, Some(cell)),
-                    MaterialSource::Constant(m) => m,
-                    MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
-                };
-                Some((m, mat, Term::Flat))
-            }
+            CellState::Air(src) => Some((m, self.air_material(src, p, cell), Term::Flat)),
             CellState::Solid(mat) => Some((-m, mat, Term::Flat)),
             CellState::Brick(id) => {
                 let (v, mat) = (self.grid).interpolate::<f32>(id, cell, V2::new(p.x, p.y), true)?;
