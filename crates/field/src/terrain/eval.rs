@@ -146,8 +146,8 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// The sample at `p` in `cell` computed on `f32` values, with the gradient taken at the
-    /// end from the term the value came from; `None` where a smooth event would blend (and
-    /// without cell tapes), for the dual path instead.
+    /// end from the term the value came from; `None` where a smooth event would blend, where
+    /// the list is empty (nothing to save) and without cell tapes, for the dual path.
     ///
     /// Without smooth terms every step of the field picks one of its operands (`max`,
     /// `min` and the clamp select; they do not blend), and on duals it picks by the
@@ -159,6 +159,10 @@ impl<F: Sdf> Terrain<F> {
     /// duals for every event.
     pub(super) fn sample_cell(&self, p: Vec2, cell: usize) -> Option<(Dual, MaterialId)> {
         let c = self.grid.stored_cell(cell)?;
+        if c.events.is_empty() {
+            // The state alone: on values first, it would be evaluated twice.
+            return None;
+        }
         let (d, mat, from) = self.pick_term(p, cell, c)?;
         let dual = match from {
             Term::Flat => <Dual as Num>::constant(d),
