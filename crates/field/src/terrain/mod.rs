@@ -17,10 +17,10 @@
 //!
 //! One generic routine computes this over `f32` ([`Sdf::distance`]) and over
 //! [`Dual`](craterfield_core::det::math::Dual) ([`Sdf::sample`]), so both give the same distance bits.
-//! Where a cell's list holds no smooth event, [`Sdf::sample`] runs the `f32` routine and
-//! evaluates on duals only the term whose value won (`min`, `max` and the clamp each pick
-//! one operand, by value): the same bits as the dual routine, with one event's gradient
-//! computed instead of every listed event's.
+//! Where a cell's list holds events and none of them smooth, [`Sdf::sample`] runs the
+//! `f32` routine and evaluates on duals only the term whose value won (`min`, `max` and the
+//! clamp each pick one operand, by value): the same bits as the dual routine, with one
+//! event's gradient computed instead of every listed event's.
 //!
 //! # Why the grid is exact
 //!
