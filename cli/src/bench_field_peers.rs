@@ -78,7 +78,7 @@ pub(crate) struct Comparison {
     sign_mismatch: Vec<(usize, f64)>,
 }
 
-/// Million operations per second of `f` over `items`.
+/// Million operations per second of `f` over `items` (the median pass, see [`PASSES`]).
 fn mops<T>(items: &[T], mut f: impl FnMut(&T) -> f32) -> f64 {
     median_rate(items.len(), || {
         let mut acc = 0.0f32;

@@ -88,15 +88,6 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
-    /// The material of an air cell's state at `p` in `cell` (carves keep what was there).
-    fn air_material(&self, src: MaterialSource, p: Vec2, cell: usize) -> MaterialId {
-        match src {
-            MaterialSource::Base => self.base_material_at(p, Some(cell)),
-            MaterialSource::Constant(m) => m,
-            MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
-        }
-    }
-
     /// The field at `p` in `cell` from the cell's state and the first `upto` listed events.
     pub(super) fn eval_cell<N: Lift, const MAT: bool>(
         &self,
@@ -113,7 +104,11 @@ impl<F: Sdf> Terrain<F> {
             CellState::Base => self.base_clamped::<N, MAT>(p, Some(cell)),
             CellState::Air(src) => {
                 let mat = if N::MATERIAL || MAT {
-                    self.air_material(src, p, cell)
+                    match src {
+                        MaterialSource::Base => self.base_material_at(p, Some(cell)),
+                        MaterialSource::Constant(m) => m,
+                        MaterialSource::Brick(id) => self.grid.brick_material(id, cell, p),
+                    }
                 } else {
                     0
                 };
@@ -222,39 +217,27 @@ impl<F: Sdf> Terrain<F> {
         Some((d, mat, from))
     }
 
-    /// A cell state's value and material at `p`, as [`Terrain::eval_cell`] starts from
-    /// them, and whether the value is a constant (`Flat`: the band's edges, air, solid) or
-    /// the state's own term; `None` without cell tapes (the dual path answers).
+    /// A cell state's value and material at `p` ([`Terrain::eval_cell`] before any event),
+    /// and whether the value is a constant (`Flat`: air, solid, the clamp's bounds) or the
+    /// state's own term; `None` without cell tapes (the dual path evaluates the base).
     fn state_value(
         &self,
         p: Vec2,
         cell: usize,
         state: CellState,
     ) -> Option<(f32, MaterialId, Term)> {
+        self.cell_tapes.as_ref()?;
         let m = self.options.band;
-        match state {
-            CellState::Base => {
-                let plan = self.cell_tapes.as_ref()?.get(&self.grid, Some(cell));
-                if let Some(c) = plan.clamped {
-                    return Some((c, exec::point::material(&plan.material, p), Term::Flat));
-                }
-                let (v, mat) = exec::point::value(&plan.material, p);
-                // `nclamp`, which gives its bounds as constants.
-                Some(if !max_keeps(v, -m) {
-                    (-m, mat, Term::Flat)
-                } else if !min_keeps(v, m) {
-                    (m, mat, Term::Flat)
-                } else {
-                    (v, mat, Term::State)
-                })
-            }
-            CellState::Air(src) => Some((m, self.air_material(src, p, cell), Term::Flat)),
-            CellState::Solid(mat) => Some((-m, mat, Term::Flat)),
-            CellState::Brick(id) => {
-                let (v, mat) = (self.grid).interpolate::<f32>(id, cell, V2::new(p.x, p.y), true)?;
-                Some((v, mat, Term::State))
-            }
-        }
+        let (v, mat) = self.eval_cell::<f32, true>(p, cell, 0);
+        let flat = match state {
+            CellState::Air(_) | CellState::Solid(_) => true,
+            // `nclamp` gives its bounds as constants; a base clamped over the whole cell
+            // is one too, and taken as `State` costs one dual evaluation, not a bit.
+            CellState::Base => v == m || v == -m,
+            // An interpolated `±M` may have a slope.
+            CellState::Brick(_) => false,
+        };
+        Some((v, mat, if flat { Term::Flat } else { Term::State }))
     }
 
     /// The state's own term at `p` on duals (where [`Terrain::state_value`] said `State`).
