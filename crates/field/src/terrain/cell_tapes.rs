@@ -26,18 +26,25 @@ use crate::terrain::grid::Grid;
 use crate::terrain::limits::MAX_CELL_TAPE_BYTES;
 
 /// The tapes of one region.
+///
+/// Laid out in this order on a cache line of its own: a point query reads the clamp's
+/// fields first and, where they do not answer, the value tape's; the material tape last.
 #[derive(Debug)]
+#[repr(C, align(64))]
 pub(crate) struct CellTape {
-    /// Distance only.
-    pub value: Tape,
-    /// Distance and material.
-    pub material: Tape,
     /// `Some(±band)` when the base is beyond the band everywhere in the region: the clamp
     /// then gives that constant with a zero gradient (the material still comes from the
     /// tape), so the distance needs no evaluation.
     pub clamped: Option<f32>,
+    /// Where [`CellTape::clamped`] is not known for the whole cell, the squares of it
+    /// where it is.
+    pub squares: SubClamp,
     /// Bounds of `clamp(base, -M, M)` over the region (`[-M, M]` when nothing is known).
     pub range: (f32, f32),
+    /// Distance only.
+    pub value: Tape,
+    /// Distance and material.
+    pub material: Tape,
 }
 
 impl CellTape {
@@ -49,6 +56,7 @@ impl CellTape {
         self.value.same_as(&other.value)
             && self.material.same_as(&other.material)
             && self.clamped.map(f32::to_bits) == other.clamped.map(f32::to_bits)
+            && self.squares == other.squares
             && (self.range.0.to_bits(), self.range.1.to_bits())
                 == (other.range.0.to_bits(), other.range.1.to_bits())
     }
@@ -65,14 +73,18 @@ impl CellTape {
             (t.registers, t.value, t.material, t.height_cap.to_bits()).hash(&mut h);
         }
         self.clamped.map(f32::to_bits).hash(&mut h);
+        self.squares.key().hash(&mut h);
         (self.range.0.to_bits(), self.range.1.to_bits()).hash(&mut h);
         h.finish()
     }
 
-    fn new(program: &Program, region: Option<(Vec2, Vec2)>, band: f32, reach: Reach) -> CellTape {
+    /// The tapes of `program` over `region` (the whole program's for `None`).
+    fn new(program: &Program, region: Option<Square>, band: f32, reach: Reach) -> CellTape {
         let mut range = (-band, band);
+        let mut squares = SubClamp::default();
         let (program, clamped) = match region {
-            Some((min, max)) => {
+            Some(region) => {
+                let (min, max) = region.padded();
                 let (p, bound) = program.specialize_with_bound(min, max);
                 if !bound.nan {
                     range = (bound.lo.clamp(-band, band), bound.hi.clamp(-band, band));
@@ -88,7 +100,11 @@ impl CellTape {
                 } else {
                     None
                 };
-                (p.fuse(), clamped)
+                let p = p.fuse();
+                if clamped.is_none() && reach == Reach::Band {
+                    squares = SubClamp::prove(&p, region, band);
+                }
+                (p, clamped)
             }
             None => (program.fuse(), None),
         };
@@ -110,8 +126,112 @@ impl CellTape {
             value,
             material,
             clamped,
+            squares,
             range,
         }
+    }
+}
+
+/// A square region of the plane: a cell, or a halo tile.
+#[derive(Clone, Copy, Debug)]
+struct Square {
+    min: Vec2,
+    size: f32,
+}
+
+impl Square {
+    /// How far the square is grown for its proofs: the `f32` lookup may place a point a
+    /// rounding error outside it.
+    fn pad(self) -> f32 {
+        self.size / 1024.0 + (self.min.abs().max_element() + self.size) / 1_048_576.0
+    }
+
+    /// The square grown by [`Square::pad`].
+    fn padded(self) -> (Vec2, Vec2) {
+        let pad = Vec2::splat(self.pad());
+        (self.min - pad, self.min + Vec2::splat(self.size) + pad)
+    }
+}
+
+/// Squares per side of a cell that [`SubClamp`] tells apart.
+const SUB_SQUARES: u32 = 4;
+
+/// The squares of a cell, in a [`SUB_SQUARES`] by [`SUB_SQUARES`] split, where the base is
+/// proven beyond the band: there the clamp gives its constant with a zero gradient, as in
+/// a cell whose whole tape is [`CellTape::clamped`], with no evaluation. Cells are twice
+/// the band wide (by default), so much of a cell that the surface crosses lies beyond
+/// the band from it.
+///
+/// Part of a cell's [`CellTape`], and of what makes two tapes equal: it holds the cell's
+/// corner, so cells whose specialized tapes are alike no longer share them where either
+/// has a square proven (levels repeat few tapes across cells the surface crosses).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct SubClamp {
+    /// Bit `j * SUB_SQUARES + i`: the base is at least the band over square `(i, j)`.
+    above: u16,
+    /// The same, at most minus the band.
+    below: u16,
+    /// The cell's lower-left corner, kept so that a lookup needs no division.
+    min: Vec2,
+    /// Squares per unit of length.
+    scale: f32,
+}
+
+impl SubClamp {
+    /// The proof over the squares of `cell`, by the bound of `program` (the cell's,
+    /// specialized) over each square grown by the cell's pad, which covers the rounding
+    /// of [`SubClamp::constant`]'s lookup as it covers the cell's.
+    fn prove(program: &Program, cell: Square, band: f32) -> SubClamp {
+        let (min, size, pad) = (cell.min, cell.size, cell.pad());
+        let side = size / SUB_SQUARES as f32;
+        let mut proof = SubClamp {
+            min,
+            scale: SUB_SQUARES as f32 / size,
+            ..SubClamp::default()
+        };
+        for j in 0..SUB_SQUARES {
+            for i in 0..SUB_SQUARES {
+                let lo = min + Vec2::new(i as f32, j as f32) * side;
+                let bound = program.bound(lo - Vec2::splat(pad), lo + Vec2::splat(side + pad));
+                let bit = 1u16 << (j * SUB_SQUARES + i);
+                if bound.nan {
+                    continue;
+                }
+                if bound.lo >= band {
+                    proof.above |= bit;
+                } else if bound.hi <= -band {
+                    proof.below |= bit;
+                }
+            }
+        }
+        proof
+    }
+
+    /// How many squares are proven.
+    #[cfg(test)]
+    pub(crate) fn proven(self) -> u32 {
+        (self.above | self.below).count_ones()
+    }
+
+    /// What [`CellTape::key`] hashes of the proof: equal proofs, equal keys.
+    fn key(self) -> (u16, u16, u32, u32, u32) {
+        let (x, y) = (self.min.x.to_bits(), self.min.y.to_bits());
+        (self.above, self.below, x, y, self.scale.to_bits())
+    }
+
+    /// The clamp's constant (`band` or `-band`) at `p` (in the cell, up to the rounding
+    /// that the proof's padding covers), if its square is proven.
+    pub(crate) fn constant(self, p: Vec2, band: f32) -> Option<f32> {
+        let last = Vec2::splat((SUB_SQUARES - 1) as f32);
+        let local = ((p - self.min) * self.scale).clamp(Vec2::ZERO, last);
+        // In [0, SUB_SQUARES - 1] (NaN casts to 0, and is refused below): the casts floor.
+        let bit = 1u16 << (local.y as u32 * SUB_SQUARES + local.x as u32);
+        // One branch, on the bit: a point near the surface, in no proven square, takes
+        // it the same way every time wherever it is.
+        if (self.above | self.below) & bit == 0 || !p.is_finite() {
+            return None;
+        }
+        Some(if self.above & bit != 0 { band } else { -band })
     }
 }
 
@@ -266,8 +386,11 @@ impl CellTapes {
     pub(super) fn set_specialize(&mut self, on: bool) {
         if on != self.specialize {
             self.specialize = on;
-            for c in self.cells.iter_mut().chain(&mut self.halo.tiles) {
+            for c in &mut self.cells {
                 *c = OnceLock::new();
+            }
+            for t in &mut self.halo.tiles {
+                *t = OnceLock::new();
             }
         }
     }
@@ -295,7 +418,8 @@ impl CellTapes {
     pub(super) fn get(&self, grid: &Grid, cell: Option<usize>) -> &CellTape {
         match cell.and_then(|c| self.cells.get(c).map(|slot| (c, slot))) {
             Some((c, slot)) if self.specialize => slot.get_or_init(|| {
-                self.specialized(grid.cell_min_f32(c), grid.cell_size(), Reach::Band)
+                let (min, size) = (grid.cell_min_f32(c), grid.cell_size());
+                self.specialized(min, size, Reach::Band)
             }),
             _ => self.whole(),
         }
@@ -318,15 +442,12 @@ impl CellTapes {
     /// The program specialized to the square of side `size` at `min` (shared with any
     /// equal tape; the whole program's past the budget).
     fn specialized(&self, min: Vec2, size: f32, reach: Reach) -> Arc<CellTape> {
-        // Padded: the f32 lookup may place a point a rounding error outside the square.
-        let pad = size / 1024.0 + (min.abs().max_element() + size) / 1_048_576.0;
-        let max = min + Vec2::splat(size + pad);
-        let min = min - Vec2::splat(pad);
         let whole = self.whole();
         if self.bytes() >= MAX_CELL_TAPE_BYTES {
             return whole.clone();
         }
-        let tape = CellTape::new(&self.program, Some((min, max)), self.band, reach);
+        let region = Square { min, size };
+        let tape = CellTape::new(&self.program, Some(region), self.band, reach);
         if tape.same_as(whole) {
             return whole.clone();
         }

@@ -51,18 +51,20 @@ impl<F: Sdf> Terrain<F> {
         cell: Option<usize>,
     ) -> (N, MaterialId) {
         let m = self.options.band;
-        if let Some(cell_tapes) = &self.cell_tapes {
-            let plan = self.plan(cell_tapes, cell, p);
-            if let Some(c) = plan.clamped {
-                let mat = if MAT || N::MATERIAL {
-                    exec::point::material(&plan.material, p)
-                } else {
-                    0
-                };
-                return (N::constant(c), mat);
-            }
+        let Some(cell_tapes) = &self.cell_tapes else {
+            let (d, mat) = N::base(&self.base, p, MAT);
+            return (nclamp(d, -m, m), mat);
+        };
+        let plan = self.plan(cell_tapes, cell, p);
+        if let Some(c) = plan.clamped.or_else(|| plan.squares.constant(p, m)) {
+            let mat = if MAT || N::MATERIAL {
+                exec::point::material(&plan.material, p)
+            } else {
+                0
+            };
+            return (N::constant(c), mat);
         }
-        let (d, mat) = self.base_at::<N>(p, cell, MAT);
+        let (d, mat) = N::tape(plan, p, MAT);
         (nclamp(d, -m, m), mat)
     }
 
@@ -323,6 +325,7 @@ mod tests {
     use glam::Vec2;
 
     use super::Term;
+    use crate::sdf::Sdf;
     use crate::terrain::{CellState, Terrain};
     use crate::{Event, Graph, Level};
     use craterfield_core::det::math::Dual;
@@ -430,6 +433,65 @@ mod tests {
             );
             assert!(winners.iter().all(|&n| n > 100), "winners {winners:?}");
             assert!(states.iter().all(|&n| n > 100), "states {states:?}");
+        }
+    }
+
+    /// The squares of a cell that its tape proves beyond the band answer the clamp's
+    /// constant with no evaluation: the same bits as the brute-force reference (distance,
+    /// gradient, material) on a lattice over every cell that has proven squares, square
+    /// edges included, and one rounding step to either side of each lattice point, on the
+    /// untouched level and on a cratered one (events over the squares).
+    #[test]
+    fn clamped_squares_answer_as_the_base_does() {
+        let level = Level::default_level();
+        let b = level.bounds();
+        let untouched = Terrain::new(level.graph().clone(), b.min, b.max, level.terrain_options());
+        for t in [untouched.unwrap(), cratered(0x5eed, false)] {
+            let tapes = t.cell_tapes.as_ref().unwrap();
+            let band = t.options.band;
+            let (mut squares, mut answered) = (0, 0);
+            for cell in 0..t.grid.cell_count() {
+                let plan = tapes.get(&t.grid, Some(cell));
+                // Only a cell whose state is its base reads the base (a brick cell
+                // answers from its samples, which the reference does not have).
+                let base = t
+                    .grid
+                    .stored_cell(cell)
+                    .is_none_or(|c| c.state.0 == CellState::Base);
+                if plan.squares.proven() == 0 || !base {
+                    continue;
+                }
+                squares += plan.squares.proven();
+                let (min, size) = (t.grid.cell_min_f32(cell), t.grid.cell_size());
+                for j in 0..=16 {
+                    for i in 0..=16 {
+                        let p = min + Vec2::new(i as f32, j as f32) * (size / 16.0);
+                        for q in [p, p.map(f32::next_up), p.map(f32::next_down)] {
+                            if t.grid.cell_index(q) != Some(cell) {
+                                continue;
+                            }
+                            answered += u32::from(plan.squares.constant(q, band).is_some());
+                            let d = t.distance(q);
+                            assert_eq!(d.to_bits(), t.distance_brute_force(q).to_bits(), "{q:?}");
+                            let (s, r) = (t.sample(q), t.sample_brute_force(q));
+                            let bits = |s: crate::Sample| {
+                                let g = s.gradient;
+                                (
+                                    s.distance.to_bits(),
+                                    g.x.to_bits(),
+                                    g.y.to_bits(),
+                                    s.material,
+                                )
+                            };
+                            assert_eq!(bits(s), bits(r), "at {q:?}");
+                        }
+                    }
+                }
+            }
+            assert!(
+                squares > 1000 && answered > 50_000,
+                "{squares} squares, {answered} points"
+            );
         }
     }
 }
