@@ -27,8 +27,10 @@ use crate::terrain::limits::MAX_CELL_TAPE_BYTES;
 
 /// The tapes of one region.
 ///
-/// Laid out in this order on a cache line of its own: a point query reads the clamp's
-/// fields first and, where they do not answer, the value tape's; the material tape last.
+/// In this order, from the start of a cache line: a point query reads the clamp's fields
+/// first and, where they do not answer, the value tape's; the material tape last
+/// (near-surface distances at 0 explosions, best of 40 passes: 11.08-11.22 M/s laid out
+/// so, 10.88-11.08 in the compiler's order).
 #[derive(Debug)]
 #[repr(C, align(64))]
 pub(crate) struct CellTape {
@@ -386,11 +388,8 @@ impl CellTapes {
     pub(super) fn set_specialize(&mut self, on: bool) {
         if on != self.specialize {
             self.specialize = on;
-            for c in &mut self.cells {
+            for c in self.cells.iter_mut().chain(&mut self.halo.tiles) {
                 *c = OnceLock::new();
-            }
-            for t in &mut self.halo.tiles {
-                *t = OnceLock::new();
             }
         }
     }

@@ -440,7 +440,7 @@ mod tests {
     /// constant with no evaluation: the same bits as the brute-force reference (distance,
     /// gradient, material) on a lattice over every cell that has proven squares, square
     /// edges included, and one rounding step to either side of each lattice point, on the
-    /// untouched level and on a cratered one (events over the squares).
+    /// untouched level and on a cratered one (events over the squares); batches too.
     #[test]
     fn clamped_squares_answer_as_the_base_does() {
         let level = Level::default_level();
@@ -450,6 +450,7 @@ mod tests {
             let tapes = t.cell_tapes.as_ref().unwrap();
             let band = t.options.band;
             let (mut squares, mut answered) = (0, 0);
+            let mut lattice = Vec::new();
             for cell in 0..t.grid.cell_count() {
                 let plan = tapes.get(&t.grid, Some(cell));
                 // Only a cell whose state is its base reads the base (a brick cell
@@ -471,6 +472,7 @@ mod tests {
                                 continue;
                             }
                             answered += u32::from(plan.squares.constant(q, band).is_some());
+                            lattice.push(q);
                             let d = t.distance(q);
                             assert_eq!(d.to_bits(), t.distance_brute_force(q).to_bits(), "{q:?}");
                             let (s, r) = (t.sample(q), t.sample_brute_force(q));
@@ -487,6 +489,12 @@ mod tests {
                         }
                     }
                 }
+            }
+            // Batches read the squares' bits through the lanes: the same answers.
+            let mut batch = vec![0.0; lattice.len()];
+            t.distances(&lattice, &mut batch).unwrap();
+            for (p, d) in lattice.iter().zip(&batch) {
+                assert_eq!(d.to_bits(), t.distance(*p).to_bits(), "batch at {p:?}");
             }
             assert!(
                 squares > 1000 && answered > 50_000,
