@@ -39,7 +39,7 @@ pub(crate) struct CellTape {
     /// tape), so the distance needs no evaluation.
     pub clamped: Option<f32>,
     /// Where [`CellTape::clamped`] is not known for the whole cell, the squares of it
-    /// where it is.
+    /// where it is (none for a halo tile or the whole program).
     pub squares: SubClamp,
     /// Bounds of `clamp(base, -M, M)` over the region (`[-M, M]` when nothing is known).
     pub range: (f32, f32),
@@ -81,7 +81,7 @@ impl CellTape {
     }
 
     /// The tapes of `program` over `region` (the whole program's for `None`).
-    fn new(program: &Program, region: Option<Square>, band: f32, reach: Reach) -> CellTape {
+    fn new(program: &Program, region: Option<Region>, band: f32, reach: Reach) -> CellTape {
         let mut range = (-band, band);
         let mut squares = SubClamp::default();
         let (program, clamped) = match region {
@@ -134,21 +134,21 @@ impl CellTape {
     }
 }
 
-/// A square region of the plane: a cell, or a halo tile.
+/// The square a tape is specialized to: a cell, or a halo tile.
 #[derive(Clone, Copy, Debug)]
-struct Square {
+struct Region {
     min: Vec2,
     size: f32,
 }
 
-impl Square {
+impl Region {
     /// How far the square is grown for its proofs: the `f32` lookup may place a point a
     /// rounding error outside it.
     fn pad(self) -> f32 {
         self.size / 1024.0 + (self.min.abs().max_element() + self.size) / 1_048_576.0
     }
 
-    /// The square grown by [`Square::pad`].
+    /// The square grown by [`Region::pad`].
     fn padded(self) -> (Vec2, Vec2) {
         let pad = Vec2::splat(self.pad());
         (self.min - pad, self.min + Vec2::splat(self.size) + pad)
@@ -183,7 +183,7 @@ impl SubClamp {
     /// The proof over the squares of `cell`, by the bound of `program` (the cell's,
     /// specialized) over each square grown by the cell's pad, which covers the rounding
     /// of [`SubClamp::constant`]'s lookup as it covers the cell's.
-    fn prove(program: &Program, cell: Square, band: f32) -> SubClamp {
+    fn prove(program: &Program, cell: Region, band: f32) -> SubClamp {
         let (min, size, pad) = (cell.min, cell.size, cell.pad());
         let side = size / SUB_SQUARES as f32;
         let mut proof = SubClamp {
@@ -445,7 +445,7 @@ impl CellTapes {
         if self.bytes() >= MAX_CELL_TAPE_BYTES {
             return whole.clone();
         }
-        let region = Square { min, size };
+        let region = Region { min, size };
         let tape = CellTape::new(&self.program, Some(region), self.band, reach);
         if tape.same_as(whole) {
             return whole.clone();

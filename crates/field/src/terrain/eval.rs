@@ -443,10 +443,8 @@ mod tests {
     /// untouched level and on a cratered one (events over the squares); batches too.
     #[test]
     fn clamped_squares_answer_as_the_base_does() {
-        let level = Level::default_level();
-        let b = level.bounds();
-        let untouched = Terrain::new(level.graph().clone(), b.min, b.max, level.terrain_options());
-        for t in [untouched.unwrap(), cratered(0x5eed, false)] {
+        let untouched = Level::default_level().terrain().unwrap();
+        for t in [untouched, cratered(0x5eed, false)] {
             let tapes = t.cell_tapes.as_ref().unwrap();
             let band = t.options.band;
             let (mut squares, mut answered) = (0, 0);
@@ -490,7 +488,8 @@ mod tests {
                     }
                 }
             }
-            // Batches read the squares' bits through the lanes: the same answers.
+            // Batches do not read the squares (their lanes run the tape and clamp): the
+            // single points' constants must be those bits too.
             let mut batch = vec![0.0; lattice.len()];
             t.distances(&lattice, &mut batch).unwrap();
             for (p, d) in lattice.iter().zip(&batch) {
