@@ -149,7 +149,7 @@ impl<F: Sdf> Terrain<F> {
     /// Without smooth terms every step of the field picks one of its operands (`max`,
     /// `min` and the clamp select; they do not blend), and on duals it picks by the
     /// values alone, which are the `f32` path's bits. So the dual result is the picked
-    /// term's dual: the state's (its base or brick, evaluated on duals only when it wins),
+    /// term's dual: the state's (its base or brick, evaluated on duals before the list),
     /// an event's `-c` or `c` (evaluated on duals as [`apply_event`] evaluates it), or a
     /// constant of the clamp, whose gradient is `+0`. Every listed event's square root,
     /// division and gradient arithmetic is thus done once, for the winner, instead of on
@@ -160,10 +160,10 @@ impl<F: Sdf> Terrain<F> {
             // The state alone: on values first, it would be evaluated twice.
             return None;
         }
-        let (d, mat, from) = self.pick_term(p, cell, c)?;
+        let (d, mat, from, state) = self.pick_term(p, cell, c)?;
         let dual = match from {
             Term::Flat => <Dual as Num>::constant(d),
-            Term::State => self.state_dual(p, cell, c.state.0)?,
+            Term::State => state,
             Term::Event(i) => {
                 let e = c.events.listed().get(i)?;
                 let r = e.radius_at(self.tick)?;
@@ -179,13 +179,15 @@ impl<F: Sdf> Terrain<F> {
     }
 
     /// The value pass of [`Terrain::sample_cell`]: the field's value and material at `p`
-    /// in cell `c` (index `cell`), and the term the value came from.
-    fn pick_term(&self, p: Vec2, cell: usize, c: &Cell) -> Option<(f32, MaterialId, Term)> {
+    /// in cell `c` (index `cell`), the term the value came from, and the state's dual
+    /// ([`Terrain::state_term`]).
+    fn pick_term(&self, p: Vec2, cell: usize, c: &Cell) -> Option<(f32, MaterialId, Term, Dual)> {
         let m = self.options.band;
-        let (mut d, mut mat, mut from) = self.state_value(p, cell, c.state.0)?;
+        let (state, mut mat, mut from) = self.state_term(p, cell)?;
+        let mut d = state.v;
         if !c.may_fill && d == m && from == Term::Flat {
             // Only carves follow, and none changes the top (as in `eval_cell`).
-            return Some((d, mat, from));
+            return Some((d, mat, from, state));
         }
         let pv = V2::new(p.x, p.y);
         for (i, e) in c.events.listed().iter().enumerate() {
@@ -216,40 +218,23 @@ impl<F: Sdf> Terrain<F> {
                 (d, from) = (m, Term::Flat);
             }
         }
-        Some((d, mat, from))
+        Some((d, mat, from, state))
     }
 
-    /// A cell state's value and material at `p` ([`Terrain::eval_cell`] before any event),
-    /// and whether the value is a constant (`Flat`: air, solid, the clamp's bounds) or the
-    /// state's own term; `None` without cell tapes (the dual path evaluates the base).
-    fn state_value(
-        &self,
-        p: Vec2,
-        cell: usize,
-        state: CellState,
-    ) -> Option<(f32, MaterialId, Term)> {
+    /// A cell state's dual and material at `p` ([`Terrain::eval_cell`] before any
+    /// event, on duals), and its term: `Flat` where the gradient is `+0` in both
+    /// components (air, solid, the clamp's bounds, a brick's air), which is then bit for
+    /// bit the constant a `Flat` term gives, so the top of the band skips the carves as
+    /// on the distance path; `None` without cell tapes (the dual path evaluates the base).
+    ///
+    /// On duals at once rather than on values and again after the list when the state
+    /// wins: the dual's value is the `f32` path's bits, and a brick's samples (a cache
+    /// miss) are read once.
+    fn state_term(&self, p: Vec2, cell: usize) -> Option<(Dual, MaterialId, Term)> {
         self.cell_tapes.as_ref()?;
-        let m = self.options.band;
-        let (v, mat) = self.eval_cell::<f32, true>(p, cell, 0);
-        let flat = match state {
-            CellState::Air(_) | CellState::Solid(_) => true,
-            // `nclamp` gives its bounds as constants; a base clamped over the whole cell
-            // is one too, and taken as `State` costs one dual evaluation, not a bit.
-            CellState::Base => v == m || v == -m,
-            // An interpolated `±M` may have a slope.
-            CellState::Brick(_) => false,
-        };
-        Some((v, mat, if flat { Term::Flat } else { Term::State }))
-    }
-
-    /// The state's own term at `p` on duals (where [`Terrain::state_value`] said `State`).
-    fn state_dual(&self, p: Vec2, cell: usize, state: CellState) -> Option<Dual> {
-        match state {
-            CellState::Brick(id) => (self.grid)
-                .interpolate::<Dual>(id, cell, <Dual as Lift>::point(p), false)
-                .map(|(d, _)| d),
-            _ => Some(self.base_clamped::<Dual, true>(p, Some(cell)).0),
-        }
+        let (dual, mat) = self.eval_cell::<Dual, true>(p, cell, 0);
+        let flat = dual.dx.to_bits() == 0 && dual.dy.to_bits() == 0;
+        Some((dual, mat, if flat { Term::Flat } else { Term::State }))
     }
 
     pub(super) fn eval<N: Lift, const MAT: bool>(&self, p: Vec2) -> (N, MaterialId) {
@@ -370,8 +355,8 @@ mod tests {
 
     /// The sample on values with the winner's gradient has every bit of the sample on
     /// duals (value, gradient, material), in every kind of cell, where each kind of term
-    /// wins, at random points, at lattice points and on cell edges; and the fast path
-    /// answered most of them.
+    /// wins, at random points, at lattice points and on cell edges, bricks with a flat
+    /// gradient included; and the fast path answered most of them.
     #[test]
     fn samples_on_values_are_the_dual_samples() {
         for (seed, smooth) in [(0x5a17_u64, false), (0xd0a1, true)] {
@@ -398,8 +383,18 @@ mod tests {
                 let edge = Vec2::new(snap(q.x, origin.x, size), q.y + i as f32 * 0.01);
                 points.extend([lattice, edge, edge.with_y(snap(q.y, origin.y, size))]);
             }
+            // Every lattice point of every brick cell with a list: where a brick's
+            // interpolation is `+M` with a slope, which is not the band's flat top.
+            let n = t.options.brick_resolution;
+            for (cell, c) in t.grid.stored_cells().iter().enumerate() {
+                if matches!(c.state.0, CellState::Brick(_)) && !c.events.is_empty() {
+                    let m = t.grid.cell_min_f32(cell);
+                    let lattice = (0..=n).flat_map(|j| (0..=n).map(move |i| (i, j)));
+                    points.extend(lattice.map(|(i, j)| m + Vec2::new(i as f32, j as f32) * h));
+                }
+            }
             let (mut fast, mut winners) = (0, [0usize; 3]);
-            let mut states = [0usize; 4];
+            let (mut states, mut flat_bricks, mut sloped_tops) = ([0usize; 4], 0, 0);
             for &p in &points {
                 let expected = t.eval::<Dual, true>(p);
                 let got = t.sample_at(p);
@@ -418,7 +413,14 @@ mod tests {
                         CellState::Brick(_) => 3,
                     }] += 1;
                     let c = t.grid.stored_cell(cell).unwrap();
-                    let (_, _, from) = t.pick_term(p, cell, c).unwrap();
+                    match (state, t.state_term(p, cell)) {
+                        (CellState::Brick(_), Some((_, _, Term::Flat))) => flat_bricks += 1,
+                        (CellState::Brick(_), Some((d, _, _))) if d.v == t.options.band => {
+                            sloped_tops += 1
+                        }
+                        _ => {}
+                    }
+                    let (_, _, from, _) = t.pick_term(p, cell, c).unwrap();
                     winners[match from {
                         Term::Flat => 0,
                         Term::State => 1,
@@ -433,6 +435,12 @@ mod tests {
             );
             assert!(winners.iter().all(|&n| n > 100), "winners {winners:?}");
             assert!(states.iter().all(|&n| n > 100), "states {states:?}");
+            // Bricks whose gradient is flat where the point is (air inside a brick).
+            assert!(flat_bricks > 100, "{flat_bricks} flat brick samples");
+            assert!(
+                sloped_tops > 100,
+                "{sloped_tops} brick samples at +M with a slope"
+            );
         }
     }
 
