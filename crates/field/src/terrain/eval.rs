@@ -137,9 +137,15 @@ impl<F: Sdf> Terrain<F> {
     /// alone ([`Terrain::sample_cell`]); elsewhere, and in a cell whose list blends, on
     /// duals throughout.
     fn sample_at(&self, p: Vec2) -> (Dual, MaterialId) {
-        (self.grid.cell_index(p))
-            .and_then(|cell| self.sample_cell(p, cell))
-            .unwrap_or_else(|| self.eval::<Dual, true>(p))
+        if p.x.is_nan() || p.y.is_nan() {
+            return self.eval::<Dual, true>(p);
+        }
+        // `eval` on duals, with the cell looked up once.
+        match self.grid.cell_index(p) {
+            Some(cell) => (self.sample_cell(p, cell))
+                .unwrap_or_else(|| self.eval_cell::<Dual, true>(p, cell, usize::MAX)),
+            None => self.base_clamped::<Dual, true>(p, None),
+        }
     }
 
     /// The sample at `p` in `cell` computed on `f32` values, with the gradient taken at the
