@@ -6,8 +6,8 @@ use glam::Vec2;
 
 use super::Terrain;
 use super::cell_tapes::{CellTape, CellTapes};
-use super::field::{Lift, apply_event, apply_unless_top};
-use super::grid::{Cell, CellState, MaterialSource};
+use super::field::{Lift, apply_event, apply_unless_top, sharp_carves};
+use super::grid::{Cell, CellState, Listed, MaterialSource};
 use crate::event::EventKind;
 use crate::exec;
 use crate::sample::{MaterialId, Sample};
@@ -22,6 +22,32 @@ fn max_keeps(a: f32, b: f32) -> bool {
 /// Whether `nmin(a, b)` keeps `a`: only where `a < b`.
 fn min_keeps(a: f32, b: f32) -> bool {
     a < b
+}
+
+/// [`sharp_carves`] on values (sharp carves, all settled), with the term the result came
+/// from: the last operand the running maximum took, or the clamp's bound. The loop of
+/// [`Terrain::pick_term`] gives the same value and term: between its steps the clamp only
+/// replaces a value at or past a bound, after which the running maximum and the clamped
+/// value take the same later events (ties go to the later operand in both), and a result
+/// at a bound is the clamp's constant in both.
+fn carves_term(d: f32, from: Term, p: V2<f32>, events: &[Listed], band: f32) -> (f32, Term) {
+    if events.is_empty() {
+        return (d, from);
+    }
+    let (mut top, mut from) = (d, from);
+    for (i, e) in events.iter().enumerate() {
+        let c = p.minus(e.center_f32()).length().offset(-e.radius_f32());
+        if !max_keeps(top, -c) {
+            (top, from) = (-c, Term::Event(i));
+        }
+    }
+    if !max_keeps(top, -band) {
+        return (-band, Term::Flat);
+    }
+    if !min_keeps(top, band) {
+        return (band, Term::Flat);
+    }
+    (top, from)
 }
 
 /// The term a value computed on `f32` came from ([`Terrain::sample_cell`]).
@@ -127,7 +153,13 @@ impl<F: Sdf> Terrain<F> {
             // the list need not be read.
             return (d, mat);
         }
-        for e in c.events.listed().iter().take(upto) {
+        let listed = c.events.listed();
+        if c.events.sharp_carves_only() && self.tick >= c.settled_at {
+            // Carves leave the material as it is.
+            let upto = upto.min(listed.len());
+            return (sharp_carves(d, pn, &listed[..upto], m), mat);
+        }
+        for e in listed.iter().take(upto) {
             (d, mat) = apply_unless_top(d, mat, pn, e, self.tick, m);
         }
         (d, mat)
@@ -196,6 +228,10 @@ impl<F: Sdf> Terrain<F> {
             return Some((d, mat, from, state));
         }
         let pv = V2::new(p.x, p.y);
+        if c.events.sharp_carves_only() && self.tick >= c.settled_at {
+            let (d, from) = carves_term(d, from, pv, c.events.listed(), m);
+            return Some((d, mat, from, state));
+        }
         for (i, e) in c.events.listed().iter().enumerate() {
             let carve = e.kind == EventKind::Carve;
             if carve && d == m && from == Term::Flat {

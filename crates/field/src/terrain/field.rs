@@ -99,6 +99,32 @@ pub(super) fn smax<N: Num>(a: N, b: N, k: f32) -> N {
     }
 }
 
+/// `events` (sharp carves, every one settled at the tick) applied to `d` at `p`, in order:
+/// the same bits as [`apply_event`] one event at a time, in a loop of one distance and one
+/// `nmax` per event.
+///
+/// A sharp carve is `v = nclamp(nmax(d, -c), -M, M)`. The clamp between two of them changes
+/// nothing the last one does not: `nclamp(nmax(nclamp(x), y)) = nclamp(nmax(x, y))` for
+/// every `x` and `y`, bit for bit and on duals too, because `nmax` and `nclamp` select one
+/// of their operands or a bound by value and never compute a new one. Where `x` is
+/// strictly inside the band the inner clamp returns `x` itself; where `x` is at or past a
+/// bound (or NaN, which the clamp sends to `-M`), both sides select the same bound or the
+/// same `y` (case by case: `x >= M` gives `M` either way; `x <= -M` gives `y` where
+/// `y >= -M`, else `-M`). So the running maximum is clamped once, after the last event
+/// (an empty list leaves `d` as it is, unclamped, as the loop would). A carve skipped at
+/// the band's top ([`apply_unless_top`]) is one whose `nmax` could only keep that top.
+pub(super) fn sharp_carves<N: Num>(d: N, p: V2<N>, events: &[Listed], band: f32) -> N {
+    if events.is_empty() {
+        return d;
+    }
+    let mut top = d;
+    for e in events {
+        let c = p.minus(e.center_f32()).length().offset(-e.radius_f32());
+        top = nmax(top, -c);
+    }
+    nclamp(top, -band, band)
+}
+
 /// What applying an event reads of it: a logged [`Event`], or a cell list's copy with its
 /// world units already converted (the same bits).
 pub(super) trait Term {

@@ -11,7 +11,7 @@ use std::ops::Deref;
 
 use glam::Vec2;
 
-use crate::event::Event;
+use crate::event::{Event, EventKind};
 
 /// A listed event with its centre, radius and rim already in world units: a query reads
 /// them for every listed event, and converting the fixed-point fields each time was a
@@ -54,6 +54,18 @@ impl Listed {
     pub(crate) fn radius_at(&self, tick: u32) -> Option<f32> {
         self.event.radius_at_with(self.radius, tick)
     }
+
+    /// The full radius, [`Event::radius_f32`]: [`Listed::radius_at`] from the tick the
+    /// event is settled (a radius is positive, so it is never `None` then).
+    pub(crate) fn radius_f32(&self) -> f32 {
+        self.radius
+    }
+
+    /// Whether applying the event is one `max` with the negated disc distance (a carve
+    /// without a rim); a fill or a rim is anything else.
+    fn is_sharp_carve(&self) -> bool {
+        self.event.kind == EventKind::Carve && self.event.is_sharp()
+    }
 }
 
 impl Deref for Listed {
@@ -69,6 +81,8 @@ impl Deref for Listed {
 pub(crate) struct EventList {
     indices: Vec<u32>,
     events: Vec<Listed>,
+    /// How many of `events` are not sharp carves (kept exact through every edit).
+    others: usize,
 }
 
 impl Deref for EventList {
@@ -88,8 +102,15 @@ impl EventList {
             .collect::<Option<Vec<Listed>>>()?;
         Some(EventList {
             indices: indices.to_vec(),
+            others: others(&events),
             events,
         })
+    }
+
+    /// Whether every listed event is a sharp carve: then applying the list is one running
+    /// maximum (see `terrain::field::sharp_carves`).
+    pub(crate) fn sharp_carves_only(&self) -> bool {
+        self.others == 0
     }
 
     /// The listed events, in list order (`listed()[k]` is the log's event `self[k]`).
@@ -99,26 +120,32 @@ impl EventList {
 
     /// Appends event `index` of the log, which is `event`.
     pub(crate) fn push(&mut self, index: u32, event: Event) {
+        let listed = Listed::new(event);
+        self.others += usize::from(!listed.is_sharp_carve());
         self.indices.push(index);
-        self.events.push(Listed::new(event));
+        self.events.push(listed);
     }
 
     pub(crate) fn clear(&mut self) {
         self.indices.clear();
         self.events.clear();
+        self.others = 0;
     }
 
     /// Drops the last event.
     pub(crate) fn pop(&mut self) {
         self.indices.pop();
-        self.events.pop();
+        if let Some(e) = self.events.pop() {
+            self.others -= usize::from(!e.is_sharp_carve());
+        }
     }
 
     /// Drops the event at position `pos` (none past the end).
     pub(crate) fn remove(&mut self, pos: usize) {
         if pos < self.indices.len() {
             self.indices.remove(pos);
-            self.events.remove(pos);
+            let e = self.events.remove(pos);
+            self.others -= usize::from(!e.is_sharp_carve());
         }
     }
 
@@ -127,6 +154,7 @@ impl EventList {
         let n = n.min(self.indices.len());
         self.indices.drain(..n);
         self.events.drain(..n);
+        self.others = others(&self.events);
     }
 
     /// Rewrites the indices through `renumber` (compaction dropped events before them;
@@ -136,6 +164,11 @@ impl EventList {
             *i = renumber.get(*i as usize).copied().unwrap_or(u32::MAX);
         }
     }
+}
+
+/// How many of `events` are not sharp carves.
+fn others(events: &[Listed]) -> usize {
+    events.iter().filter(|e| !e.is_sharp_carve()).count()
 }
 
 #[cfg(test)]
@@ -166,6 +199,36 @@ mod tests {
         list.clear();
         assert!(list.is_empty() && list.listed().is_empty());
         assert!(EventList::from_log(&[6], &log).is_none());
+    }
+
+    /// The count of events that are not sharp carves follows every edit: a fill and a
+    /// rimmed carve, listed, popped, removed and dropped with a prefix.
+    #[test]
+    fn sharp_carves_only_follows_every_edit() {
+        let fill = Event::fill(Vec2::ZERO, 1.0, 1).expect("a valid event");
+        let rimmed = carve(2.0).with_rim(0.5).expect("a valid event");
+        let log = [carve(0.0), fill, rimmed, carve(3.0), carve(4.0)];
+        let sharp = |l: &EventList| l.sharp_carves_only();
+        let mut list = EventList::from_log(&[0, 1, 3], &log).unwrap();
+        assert!(!sharp(&list));
+        list.remove(1);
+        assert!(sharp(&list));
+        list.push(2, rimmed);
+        assert!(!sharp(&list));
+        list.pop();
+        assert!(sharp(&list));
+        list.push(1, fill);
+        list.push(4, log[4]);
+        assert!(!sharp(&list));
+        list.drop_prefix(2);
+        assert!(!sharp(&list), "the fill is still listed");
+        list.drop_prefix(1);
+        assert!(sharp(&list));
+        list.push(2, rimmed);
+        list.clear();
+        assert!(sharp(&list));
+        assert!(sharp(&EventList::from_log(&[0, 3, 4], &log).unwrap()));
+        assert!(!sharp(&EventList::from_log(&[2], &log).unwrap()));
     }
 
     #[test]
