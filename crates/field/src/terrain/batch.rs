@@ -686,7 +686,9 @@ impl<F: Sdf> Kernel for Bake<'_, F> {
             }
             let (mut ds, mut mats) =
                 start_with_materials(l, t, &start, cell, &mut block, pts, &ps, used);
-            apply_values(l, &events, &mut ds, &mut mats, &ps, band, used);
+            if !apply_sharp_carves(l, &events, &mut ds, &ps, band, used) {
+                apply_values(l, &events, &mut ds, &mut mats, &ps, band, used);
+            }
             for r in 0..used {
                 l.store(ds[r].0, &mut v);
                 l.store_i(mats[r], &mut mat_lanes);
@@ -797,6 +799,42 @@ fn apply_values<L: Lanes, const NB: usize>(
             (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
         }
     }
+}
+
+/// [`apply_values`] where every event is a sharp carve (`false`, nothing done, where one
+/// is not): `terrain::field::sharp_carves` on lanes, a running maximum clamped once (the
+/// same bits, as that function shows). A register whose every lane is at or past the top
+/// ends at `+M` whatever follows, so it skips the rest. Bakes take it (a whole list at
+/// the cap: their tick ends took 4% less); batch queries do not (the lists left after a
+/// bake are short, and their blocks measured 5% slower with it).
+#[inline(always)]
+fn apply_sharp_carves<L: Lanes, const NB: usize>(
+    l: L,
+    events: &[Prepared],
+    ds: &mut [Fv<L>; NB],
+    ps: &[P2<Fv<L>>; NB],
+    band: f32,
+    used: usize,
+) -> bool {
+    let sharp = |e: &Prepared| e.kind == EventKind::Carve && e.rim <= 0.0;
+    if events.is_empty() || !events.iter().all(sharp) {
+        return false;
+    }
+    let top = l.splat(band);
+    let past_top = |d: L::F| !l.any(l.not(l.ge(d, top)));
+    let used = used.min(NB);
+    for e in events {
+        for (d, p) in ds.iter_mut().zip(ps).take(used) {
+            if !past_top(d.0) {
+                let c = p.minus(l, e.center).length(l).offset(l, -e.radius);
+                *d = d.max(l, c.neg(l));
+            }
+        }
+    }
+    for d in ds.iter_mut().take(used) {
+        *d = clamp(l, *d, -band, band);
+    }
+    true
 }
 
 /// `terrain::field::apply_event` on lanes.
