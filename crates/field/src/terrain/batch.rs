@@ -573,9 +573,11 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                 let (mut ds, mut mats) =
                     start_with_materials(l, t, &start, g.cell, &mut block, &pts, &ps, NB);
                 let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
-                for e in events {
-                    for r in 0..NB {
-                        (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
+                if !apply_sharp_carves(l, events, &mut ds, &ps, band, NB) {
+                    for e in events {
+                        for r in 0..NB {
+                            (ds[r], mats[r]) = apply_event(l, ds[r], mats[r], ps[r], e, band);
+                        }
                     }
                 }
                 for r in 0..NB {
@@ -805,14 +807,16 @@ fn apply_values<L: Lanes, const NB: usize>(
 /// is not): `terrain::field::sharp_carves` on lanes, a running maximum clamped once (the
 /// same bits, as that function shows). A register whose every lane is at or past the top
 /// ends at `+M` whatever follows, so it skips the rest. Bakes take it (a whole list at
-/// the cap: their tick ends took 4% less); batch queries do not (the lists left after a
-/// bake are short, and their blocks measured 5% slower with it).
+/// the cap: their tick ends took 4% less), and so do batch samples, on duals (which
+/// skipped no carve at the top before: 10% more samples a second after 10,000
+/// explosions); batch distances do not (the lists left after a bake are short, and their
+/// blocks, which already skip carves at the top, measured 5% slower with it).
 #[inline(always)]
-fn apply_sharp_carves<L: Lanes, const NB: usize>(
+fn apply_sharp_carves<L: Lanes, V: Val<L>, const NB: usize>(
     l: L,
     events: &[Prepared],
-    ds: &mut [Fv<L>; NB],
-    ps: &[P2<Fv<L>>; NB],
+    ds: &mut [V; NB],
+    ps: &[P2<V>; NB],
     band: f32,
     used: usize,
 ) -> bool {
@@ -825,7 +829,7 @@ fn apply_sharp_carves<L: Lanes, const NB: usize>(
     let used = used.min(NB);
     for e in events {
         for (d, p) in ds.iter_mut().zip(ps).take(used) {
-            if !past_top(d.0) {
+            if !past_top(d.v()) {
                 let c = p.minus(l, e.center).length(l).offset(l, -e.radius);
                 *d = d.max(l, c.neg(l));
             }
