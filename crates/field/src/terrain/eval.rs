@@ -154,7 +154,7 @@ impl<F: Sdf> Terrain<F> {
             return (d, mat);
         }
         let listed = c.events.listed();
-        if c.events.sharp_carves_only() && self.tick >= c.settled_at {
+        if c.folds_carves(self.tick) {
             // Carves leave the material as it is.
             let upto = upto.min(listed.len());
             return (sharp_carves(d, pn, &listed[..upto], m), mat);
@@ -228,7 +228,7 @@ impl<F: Sdf> Terrain<F> {
             return Some((d, mat, from, state));
         }
         let pv = V2::new(p.x, p.y);
-        if c.events.sharp_carves_only() && self.tick >= c.settled_at {
+        if c.folds_carves(self.tick) {
             let (d, from) = carves_term(d, from, pv, c.events.listed(), m);
             return Some((d, mat, from, state));
         }

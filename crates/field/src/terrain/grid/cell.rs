@@ -83,6 +83,14 @@ pub(crate) struct Cell {
     pub(in crate::terrain) may_fill: bool,
 }
 
+impl Cell {
+    /// Whether at `tick` the list is sharp carves alone, every one settled: then it applies
+    /// as one running maximum (`terrain::field::sharp_carves`).
+    pub(in crate::terrain) fn folds_carves(&self, tick: u32) -> bool {
+        self.events.sharp_carves_only() && tick >= self.settled_at
+    }
+}
+
 /// A `CellState` with a `Default` (Base).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct CellStateSlot(pub(in crate::terrain) CellState);
