@@ -780,6 +780,19 @@ impl Prepared {
     fn is_sharp_carve(&self) -> bool {
         self.kind == EventKind::Carve && self.rim <= 0.0
     }
+
+    /// The signed distance from `p` to the event's disc (`terrain::field::apply_event`'s).
+    #[inline(always)]
+    fn disc_distance<L: Lanes, V: Val<L>>(&self, l: L, p: P2<V>) -> V {
+        p.minus(l, self.center).length(l).offset(l, -self.radius)
+    }
+}
+
+/// Whether `events` fold as one running maximum of sharp carves (none of another kind,
+/// and at least one).
+#[inline(always)]
+fn all_sharp_carves(events: &[Prepared]) -> bool {
+    !events.is_empty() && events.iter().all(Prepared::is_sharp_carve)
 }
 
 /// `events` in order on registers of values (no gradients), skipping a carve for a
@@ -828,7 +841,7 @@ fn apply_sharp_carves<L: Lanes, V: Val<L>, const NB: usize>(
     band: f32,
     used: usize,
 ) -> bool {
-    if events.is_empty() || !events.iter().all(Prepared::is_sharp_carve) {
+    if !all_sharp_carves(events) {
         return false;
     }
     let top = l.splat(band);
@@ -837,8 +850,7 @@ fn apply_sharp_carves<L: Lanes, V: Val<L>, const NB: usize>(
     for e in events {
         for (d, p) in ds.iter_mut().zip(ps).take(used) {
             if !past_top(d.v()) {
-                let c = p.minus(l, e.center).length(l).offset(l, -e.radius);
-                *d = d.max(l, c.neg(l));
+                *d = d.max(l, e.disc_distance(l, *p).neg(l));
             }
         }
     }
@@ -864,7 +876,7 @@ fn bake_sharp_carves<L: Lanes, const NB: usize>(
     band: f32,
     used: usize,
 ) -> bool {
-    if events.is_empty() || !events.iter().all(Prepared::is_sharp_carve) {
+    if !all_sharp_carves(events) {
         return false;
     }
     let top = l.splat(band);
@@ -876,8 +888,7 @@ fn bake_sharp_carves<L: Lanes, const NB: usize>(
                 break;
             }
             for e in run {
-                let c = p.minus(l, e.center).length(l).offset(l, -e.radius);
-                m = m.max(l, c.neg(l));
+                m = m.max(l, e.disc_distance(l, *p).neg(l));
             }
         }
         *d = clamp(l, m, -band, band);
@@ -899,7 +910,7 @@ fn apply_event<L: Lanes, V: Val<L>>(
     e: &Prepared,
     band: f32,
 ) -> (V, L::I) {
-    let c = p.minus(l, e.center).length(l).offset(l, -e.radius);
+    let c = e.disc_distance(l, p);
     let k = e.rim;
     match e.kind {
         EventKind::Carve => {
