@@ -515,6 +515,15 @@ fn cratered_terrain(
     seed: u64,
     events: usize,
 ) -> craterfield::field2d::Terrain<craterfield::field2d::Graph> {
+    cratered_terrain_with(seed, events, 10)
+}
+
+/// [`cratered_terrain`] with one fill every `fill_every` events (`0`: carves only).
+fn cratered_terrain_with(
+    seed: u64,
+    events: usize,
+    fill_every: usize,
+) -> craterfield::field2d::Terrain<craterfield::field2d::Graph> {
     use craterfield::field2d::{Event, Graph, Node, Terrain, TerrainOptions};
     let heights = (0..=256)
         .map(|i| 200.0 + 40.0 * (i as f32 / 12.0).sin())
@@ -556,7 +565,7 @@ fn cratered_terrain(
     for k in 0..events {
         let center = Vec2::new(next() * 1024.0, 120.0 + next() * 340.0);
         let radius = 8.0 + next() * 40.0;
-        let event = if k % 10 == 9 {
+        let event = if fill_every > 0 && k % fill_every == fill_every - 1 {
             Event::fill(center, radius * 0.5, 0)
         } else {
             Event::carve(center, radius)
@@ -573,7 +582,9 @@ proptest! {
 
     /// Rays over a cratered terrain (air, untouched base, crater and brick cells, and the
     /// base alone outside the grid) stop at the first crossing: dense sampling of the
-    /// terrain's own field finds none before the hit (nor any, when there is no hit).
+    /// terrain's own field finds none before the hit (nor any, when there is no hit). Two
+    /// of the terrains list carves alone, whose cells rays cross by the floors of their
+    /// bricks' blocks and their bases' squares and by the walk over brick lattices.
     #[test]
     fn raycasts_over_a_cratered_terrain_never_tunnel(
         seed in 0u64..4,
@@ -585,7 +596,7 @@ proptest! {
     ) {
         thread_local! {
             static TERRAINS: Vec<craterfield::field2d::Terrain<craterfield::field2d::Graph>> =
-                (0..4).map(|s| cratered_terrain(s, 400)).collect();
+                (0..4).map(|s| cratered_terrain_with(s, 400, if s < 2 { 10 } else { 0 })).collect();
         }
         TERRAINS.with(|terrains| {
             let terrain = &terrains[seed as usize];
@@ -616,12 +627,19 @@ fn uniform_stream(seed: u64) -> impl FnMut() -> f32 {
 }
 
 /// The terrain's clear runs ([`Sdf::clear_run`]) keep their promise: dense sampling along
-/// every run finds the field at or above the threshold, inside the grid (air and crater
-/// cells, up to the bricks beside them) and outside it (the base's halo and beyond). And
-/// they are long enough to matter.
+/// every run finds the field at or above the threshold, inside the grid (air, base,
+/// crater and brick cells, with fills listed and without) and outside it (the base's halo
+/// and beyond). And they are long enough to matter.
 #[test]
 fn clear_runs_of_a_cratered_terrain_hold() {
-    let terrain = cratered_terrain(1, 400);
+    clear_runs_hold(&cratered_terrain(1, 400));
+    clear_runs_hold(&cratered_terrain_with(2, 400, 0));
+    // Few carves: most cells the surface crosses keep their base, crossed square by square.
+    clear_runs_hold(&cratered_terrain_with(3, 30, 0));
+}
+
+/// [`clear_runs_of_a_cratered_terrain_hold`] on one terrain.
+fn clear_runs_hold(terrain: &craterfield::field2d::Terrain<craterfield::field2d::Graph>) {
     let mut next = uniform_stream(0x0c1e_a125);
     let (mut runs, mut proven) = (0usize, 0.0f64);
     for k in 0..3000 {
@@ -651,6 +669,79 @@ fn clear_runs_of_a_cratered_terrain_hold() {
     }
     assert!(runs > 1000, "only {runs} of 3000 runs proved anything");
     assert!(proven > 200_000.0, "only {proven} units proven in all");
+}
+
+/// Clear runs from points in brick cells: dense sampling finds the field at or above the
+/// threshold over every run (no crossing skipped, the caller's roundings included), with
+/// fills listed after the bakes and without. Without fills, the bricks' block floors and
+/// the closed-form walk over their lattice squares carry runs into the bricks, many of
+/// them to the surface itself, where the field reaches the threshold (the others end at
+/// the brick's own surface under a later carve, which the walk does not read; with the
+/// floors alone, 1 run in 695 ended at the surface).
+#[test]
+fn clear_runs_in_brick_cells_hold_and_reach_the_surface() {
+    let (inside, _) = brick_runs(&cratered_terrain(3, 400));
+    assert!(
+        inside >= 300,
+        "only {inside} runs ended inside their brick cell"
+    );
+    let (inside, at_surface) = brick_runs(&cratered_terrain_with(3, 400, 0));
+    assert!(
+        inside >= 150,
+        "only {inside} runs ended inside their brick cell"
+    );
+    assert!(
+        at_surface * 10 >= inside * 3,
+        "{at_surface} of {inside} runs that ended inside their brick reached its surface"
+    );
+}
+
+/// Clear runs from random points of `terrain`'s brick cells along random directions, each
+/// checked by dense sampling: how many ended inside their cell, and how many of those
+/// ended within 0.05 units of where the field falls to within 0.05 of the threshold.
+fn brick_runs(terrain: &craterfield::field2d::Terrain<craterfield::field2d::Graph>) -> (u32, u32) {
+    use craterfield::field2d::CellState;
+    let grid = terrain.grid();
+    let bricks: Vec<usize> = (0..grid.cell_count())
+        .filter(|&i| matches!(grid.cell(i).map(|c| c.state()), Some(CellState::Brick(_))))
+        .collect();
+    assert!(bricks.len() >= 20, "only {} brick cells", bricks.len());
+    let (nx, size) = (grid.dims().0 as usize, grid.cell_size());
+    let mut next = uniform_stream(0x0b1c_7e57);
+    let (mut inside, mut at_surface) = (0u32, 0u32);
+    for k in 0..6000 {
+        let cell = bricks[(next() * bricks.len() as f32) as usize % bricks.len()];
+        let corner = grid.origin() + Vec2::new((cell % nx) as f32, (cell / nx) as f32) * size;
+        let p = corner + Vec2::new(next(), next()) * size;
+        let dir = Vec2::from_angle(next() * std::f32::consts::TAU);
+        let above = [1e-3, 0.25, 3.0][k % 3];
+        if terrain.distance(p) < above {
+            continue;
+        }
+        let run = terrain.clear_run(p, dir, above);
+        let mut s = 0.0f32;
+        loop {
+            let d = terrain.distance(p + dir * s);
+            assert!(
+                d >= above,
+                "run {run:?} from {p} along {dir} above {above}: the field is {d} at s = {s}"
+            );
+            // Past the cell the other proofs answer (`clear_runs_of_a_cratered_terrain_hold`).
+            if s >= run.clear || grid.cell_index(p + dir * s) != Some(cell) {
+                break;
+            }
+            s = (s + 0.01).min(run.clear);
+        }
+        if grid.cell_index(p + dir * (run.clear + 0.05)) == Some(cell) {
+            inside += 1;
+            let reached = (0..=10).any(|i| {
+                let q = p + dir * (run.clear + 0.005 * i as f32);
+                terrain.distance(q) < above + 0.05
+            });
+            at_surface += u32::from(reached);
+        }
+    }
+    (inside, at_surface)
 }
 
 /// Counts the evaluations a march makes, and proves clear runs only when asked to.

@@ -61,6 +61,7 @@ impl<F: Sdf> Terrain<F> {
                     rows: Brick {
                         values: Vec::with_capacity(side * side),
                         materials: Vec::with_capacity(side * side),
+                        ..Brick::default()
                     },
                 });
             }

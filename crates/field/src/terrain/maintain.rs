@@ -232,6 +232,7 @@ impl<F: Sdf> Terrain<F> {
         let mut brick = Brick {
             values: vec![0.0; points.len()],
             materials: vec![0; points.len()],
+            ..Brick::default()
         };
         if !self.bake_lattice(
             cell,

@@ -79,6 +79,7 @@
 
 mod bake;
 mod batch;
+mod brick_walk;
 mod cell_tapes;
 mod compact;
 mod error;

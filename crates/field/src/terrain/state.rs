@@ -193,6 +193,7 @@ impl<F: Sdf> Terrain<F> {
             .map(|(values, materials)| Brick {
                 values: values.to_vec(),
                 materials: materials.to_vec(),
+                ..Brick::default()
             })
             .collect();
         let cap = self.options.cell_cap;

@@ -1,8 +1,11 @@
 //! What the grid stores per cell and per brick, and the counters it keeps: plain data that
 //! the grid and the terrain's undo journal both read, so it lives apart from the grid's code.
 
+use std::sync::OnceLock;
+
 use serde::{Deserialize, Serialize};
 
+use super::floors::BlockFloors;
 use crate::sample::MaterialId;
 
 /// Where an air cell takes its material from (carves keep the material that was there).
@@ -101,11 +104,22 @@ impl Default for CellStateSlot {
     }
 }
 
-/// A baked `(n+1) x (n+1)` lattice of distances and materials, row-major (y outer).
+/// A baked `(n+1) x (n+1)` lattice of distances and materials, row-major (y outer), and
+/// the floors of its blocks, computed when a ray first asks for them (a function of
+/// `values` alone, so whenever and on whichever thread they are computed they are the same
+/// bits; a bake or a restore pays nothing for them).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Brick {
     pub(in crate::terrain) values: Vec<f32>,
     pub(in crate::terrain) materials: Vec<MaterialId>,
+    pub(in crate::terrain) floors: OnceLock<BlockFloors>,
+}
+
+impl Brick {
+    /// The floors of the brick's blocks (`n` its resolution).
+    pub(in crate::terrain) fn floors(&self, n: u32) -> &BlockFloors {
+        self.floors.get_or_init(|| BlockFloors::of(&self.values, n))
+    }
 }
 
 /// A brick being baked a few lattice rows per tick: the cell, how many of its listed

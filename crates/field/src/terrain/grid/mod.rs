@@ -18,11 +18,13 @@ use thiserror::Error;
 
 mod cell;
 mod changes;
+mod floors;
 mod journal;
 mod list;
 
 pub(crate) use cell::{Brick, Cell, CellStateSlot, PartialBake};
 pub use cell::{CellState, GridStats, MaterialSource};
+pub(crate) use floors::FloorGrid;
 pub(in crate::terrain) use journal::Entry;
 use journal::Journal;
 pub use journal::{RollbackError, TerrainMark};
