@@ -583,8 +583,8 @@ proptest! {
     /// Rays over a cratered terrain (air, untouched base, crater and brick cells, and the
     /// base alone outside the grid) stop at the first crossing: dense sampling of the
     /// terrain's own field finds none before the hit (nor any, when there is no hit). Two
-    /// of the terrains list carves alone, whose cells rays cross by the floors of their
-    /// bricks' blocks and their bases' squares and by the walk over brick lattices.
+    /// of the terrains list carves alone, whose bricks rays cross by the floors of their
+    /// blocks and by the walk over their lattices.
     #[test]
     fn raycasts_over_a_cratered_terrain_never_tunnel(
         seed in 0u64..4,
@@ -634,7 +634,8 @@ fn uniform_stream(seed: u64) -> impl FnMut() -> f32 {
 fn clear_runs_of_a_cratered_terrain_hold() {
     clear_runs_hold(&cratered_terrain(1, 400));
     clear_runs_hold(&cratered_terrain_with(2, 400, 0));
-    // Few carves: most cells the surface crosses keep their base, crossed square by square.
+    // Few carves: most cells the surface crosses keep their base, with short carve lists
+    // that the sign proof reads.
     clear_runs_hold(&cratered_terrain_with(3, 30, 0));
 }
 

@@ -123,7 +123,7 @@ impl<F: Sdf> Terrain<F> {
         // A list that never held a fill (`may_fill`) holds carves only, unread.
         if let Start::Range(lo, _) = start
             && lo >= above
-            && (!c.may_fill || c.events.listed().iter().all(|e| e.kind == EventKind::Carve))
+            && c.lists_carves_only()
         {
             return true;
         }

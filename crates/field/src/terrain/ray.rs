@@ -21,7 +21,6 @@ use glam::{DVec2, Vec2};
 use super::Terrain;
 use super::brick_walk::{BrickRun, WalkRay, walk};
 use super::grid::{Brick, CellState, FloorGrid};
-use crate::EventKind;
 use crate::sdf::{ClearRun, Sdf};
 
 /// The rounding allowance of the ray's points, on each side of a cell's piece of the ray:
@@ -112,8 +111,8 @@ impl<F: Sdf> Terrain<F> {
         let (n, h) = (self.grid.brick_resolution(), self.grid.brick_spacing());
         let floors = brick.floors(n).over(corner, h);
         let (corner, h) = (corner.as_dvec2(), f64::from(h));
-        let lattice = walk(&ray.walk, &brick.values, n, corner, h, ray.p, ray.d);
         // Where a block's floor falls short, its lattice squares along the ray.
+        let lattice = walk(&ray.walk, &brick.values, n, corner, h, ray.p, ray.d);
         let squares = |t0, t1| match lattice.run(t0..t1) {
             BrickRun::Through => None,
             BrickRun::StopsAt { clear, retry_at } => Some((clear, retry_at)),
@@ -127,10 +126,7 @@ impl<F: Sdf> Terrain<F> {
         let CellState::Brick(id) = c.state.0 else {
             return None;
         };
-        let raises_only = !c.may_fill
-            || c.events.sharp_carves_only()
-            || c.events.listed().iter().all(|e| e.kind == EventKind::Carve);
-        self.grid.brick(id).filter(|_| raises_only)
+        self.grid.brick(id).filter(|_| c.lists_carves_only())
     }
 
     /// Walks the ray's piece `[s, exit]` in a cell square by square of `floors`: `None`

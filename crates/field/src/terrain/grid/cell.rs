@@ -6,6 +6,7 @@ use std::sync::OnceLock;
 use serde::{Deserialize, Serialize};
 
 use super::floors::BlockFloors;
+use crate::event::EventKind;
 use crate::sample::MaterialId;
 
 /// Where an air cell takes its material from (carves keep the material that was there).
@@ -91,6 +92,19 @@ impl Cell {
     /// as one running maximum (`terrain::field::sharp_carves`).
     pub(in crate::terrain) fn folds_carves(&self, tick: u32) -> bool {
         self.events.sharp_carves_only() && tick >= self.settled_at
+    }
+
+    /// Whether the list holds carves alone, so that it can only raise the field (a list
+    /// that never held a fill needs no reading).
+    #[inline]
+    pub(in crate::terrain) fn lists_carves_only(&self) -> bool {
+        !self.may_fill
+            || self.events.sharp_carves_only()
+            || self
+                .events
+                .listed()
+                .iter()
+                .all(|e| e.kind == EventKind::Carve)
     }
 }
 

@@ -11,7 +11,7 @@
 use glam::Vec2;
 
 /// Blocks per side of a brick, at most.
-pub(crate) const BLOCKS: usize = 8;
+const BLOCKS: usize = 8;
 
 /// The floors of one brick's blocks, row-major (y outer), `side x side` of them.
 #[derive(Clone, Debug)]
@@ -114,8 +114,8 @@ impl BlockFloors {
     }
 }
 
-/// Lower bounds of a field over the squares of a grid laid on a cell: the blocks of a
-/// brick, or the squares over which a cell's base tape is bounded.
+/// A brick's floors laid over its cell: what a ray's walk reads of them (the blocks'
+/// corner, size and floors), in world units.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FloorGrid<'a> {
     /// The grid's lower-left corner.
