@@ -5,6 +5,7 @@
 use glam::Vec2;
 
 use super::Terrain;
+use super::carve_lanes::{LANES_FROM, carve_max, carve_max_term};
 use super::cell_tapes::{CellTape, CellTapes};
 use super::field::{Lift, apply_event, apply_unless_top, sharp_carves};
 use super::grid::{Cell, CellState, Listed, MaterialSource};
@@ -41,13 +42,22 @@ fn carves_term(d: f32, from: Term, p: V2<f32>, events: &[Listed], band: f32) -> 
             (top, from) = (-c, Term::Event(i));
         }
     }
+    match nclamp_term(top, band) {
+        Some(bound) => (bound, Term::Flat),
+        None => (top, from),
+    }
+}
+
+/// The bound `nclamp(top, -band, band)` replaces `top` with, if it does: `-band` where
+/// `top` is not above it, else `band` where it is not below.
+fn nclamp_term(top: f32, band: f32) -> Option<f32> {
     if !max_keeps(top, -band) {
-        return (-band, Term::Flat);
+        return Some(-band);
     }
     if !min_keeps(top, band) {
-        return (band, Term::Flat);
+        return Some(band);
     }
-    (top, from)
+    None
 }
 
 /// The term a value computed on `f32` came from ([`Terrain::sample_cell`]).
@@ -156,6 +166,13 @@ impl<F: Sdf> Terrain<F> {
         let listed = c.events.listed();
         if c.folds_carves(self.tick) {
             // Carves leave the material as it is.
+            if N::VALUE
+                && upto >= listed.len()
+                && listed.len() >= LANES_FROM
+                && let Some(top) = carve_max(self.backend, p.x, p.y, &c.events, d.value())
+            {
+                return (N::constant(nclamp(top, -m, m)), mat);
+            }
             let upto = upto.min(listed.len());
             return (sharp_carves(d, pn, &listed[..upto], m), mat);
         }
@@ -229,7 +246,17 @@ impl<F: Sdf> Terrain<F> {
         }
         let pv = V2::new(p.x, p.y);
         if c.folds_carves(self.tick) {
-            let (d, from) = carves_term(d, from, pv, c.events.listed(), m);
+            let listed = c.events.listed();
+            if listed.len() >= LANES_FROM
+                && let Some((top, k)) = carve_max_term(self.backend, p.x, p.y, &c.events, d)
+            {
+                let from = k.map_or(from, Term::Event);
+                return Some(match nclamp_term(top, m) {
+                    Some(bound) => (bound, mat, Term::Flat, state),
+                    None => (top, mat, from, state),
+                });
+            }
+            let (d, from) = carves_term(d, from, pv, listed, m);
             return Some((d, mat, from, state));
         }
         for (i, e) in c.events.listed().iter().enumerate() {
@@ -483,6 +510,75 @@ mod tests {
                 sloped_tops > 100,
                 "{sloped_tops} brick samples at +M with a slope"
             );
+        }
+    }
+
+    /// Lists of sharp carves long enough for the lanes (`terrain::carve_lanes`) answer
+    /// distances and samples with every bit of the scalar chain, on every backend this
+    /// machine runs, at random points and on the carves' rims; the chain is the
+    /// brute-force reference's bits where the cell is its base.
+    #[test]
+    fn long_carve_lists_answer_as_the_reference_on_every_backend() {
+        let level = Level::default_level();
+        let b = level.bounds();
+        let mut t =
+            Terrain::new(level.graph().clone(), b.min, b.max, level.terrain_options()).unwrap();
+        let mut unit = crate::test_rng::unit_f64(0x1a7e5);
+        let mut rims = Vec::new();
+        for _ in 0..1500 {
+            let c = Vec2::new(
+                1100.0 + unit() as f32 * 400.0,
+                400.0 + unit() as f32 * 300.0,
+            );
+            let r = 3.0 + unit() as f32 * 20.0;
+            t.apply(Event::carve(c, r).unwrap().at_tick(t.tick()))
+                .unwrap();
+            rims.push(c + Vec2::new(r, 0.0));
+        }
+        let long = |p: Vec2| {
+            let cell = t.grid.cell_index(p)?;
+            let c = t.grid.stored_cell(cell)?;
+            (c.folds_carves(t.tick) && c.events.len() >= super::LANES_FROM).then_some(())
+        };
+        let mut points: Vec<Vec2> = (0..4000)
+            .map(|_| {
+                Vec2::new(
+                    1050.0 + unit() as f32 * 500.0,
+                    350.0 + unit() as f32 * 400.0,
+                )
+            })
+            .collect();
+        points.extend(rims);
+        let on_long = points.iter().filter(|&&p| long(p).is_some()).count();
+        assert!(on_long > 2000, "{on_long} points in long carve lists");
+        // The reference: the chain, which the scalar backend runs (in a brick cell the
+        // brute force has no brick to read, so it is the reference only elsewhere).
+        let bits = |s: crate::Sample| {
+            (
+                s.distance.to_bits(),
+                s.gradient.x.to_bits(),
+                s.gradient.y.to_bits(),
+                s.material,
+            )
+        };
+        use craterfield_core::backend::Backend;
+        t.set_backend(Backend::Scalar).unwrap();
+        let reference: Vec<_> = points
+            .iter()
+            .map(|&p| (t.distance(p).to_bits(), bits(t.sample(p))))
+            .collect();
+        for (&p, (d, s)) in points.iter().zip(&reference) {
+            if t.cell_state(p) == Some(CellState::Base) {
+                assert_eq!(*d, t.distance_brute_force(p).to_bits(), "at {p}");
+                assert_eq!(*s, bits(t.sample_brute_force(p)), "at {p}");
+            }
+        }
+        for backend in Backend::available() {
+            t.set_backend(backend).unwrap();
+            for (&p, (d, s)) in points.iter().zip(&reference) {
+                assert_eq!(t.distance(p).to_bits(), *d, "{backend:?} at {p}");
+                assert_eq!(bits(t.sample(p)), *s, "{backend:?} at {p}");
+            }
         }
     }
 

@@ -18,6 +18,9 @@ use craterfield_core::det::math::{Dual, Num, V2, nclamp, nmax, nmin};
 pub(super) trait Lift: Num {
     /// Whether this path reports materials (the `f32` path does not need them).
     const MATERIAL: bool;
+    /// Whether this is the `f32` path, a value without a gradient (a result computed on
+    /// values alone is then this type's [`Num::constant`]).
+    const VALUE: bool;
     fn point(p: Vec2) -> V2<Self>;
     /// The base field at `p`; `material` asks the `f32` path to report the material too.
     fn base<F: Sdf>(f: &F, p: Vec2, material: bool) -> (Self, MaterialId);
@@ -30,6 +33,7 @@ pub(super) trait Lift: Num {
 
 impl Lift for f32 {
     const MATERIAL: bool = false;
+    const VALUE: bool = true;
     fn point(p: Vec2) -> V2<f32> {
         V2::new(p.x, p.y)
     }
@@ -54,6 +58,7 @@ impl Lift for f32 {
 
 impl Lift for Dual {
     const MATERIAL: bool = true;
+    const VALUE: bool = false;
     fn point(p: Vec2) -> V2<Dual> {
         let (x, y) = Dual::point(p);
         V2::new(x, y)

@@ -80,6 +80,7 @@
 mod bake;
 mod batch;
 mod brick_walk;
+mod carve_lanes;
 mod cell_tapes;
 mod compact;
 mod error;

@@ -8,6 +8,7 @@
 //! renumbers them), so a copy stays equal to the log's event for as long as it is listed.
 
 use std::ops::Deref;
+use std::sync::OnceLock;
 
 use glam::Vec2;
 
@@ -83,6 +84,68 @@ pub(crate) struct EventList {
     events: Vec<Listed>,
     /// How many of `events` are not sharp carves (kept exact through every edit).
     others: usize,
+    /// The events' discs for SIMD lanes, laid out when a query first asks for them.
+    discs: DiscCache,
+}
+
+/// [`DiscChunks`] of a list, made on the first query that asks and dropped by every edit:
+/// a function of the listed events alone, so wherever and whenever it is made it holds
+/// the same bits, and inserts (which edit lists many times a tick) pay nothing for it. A
+/// clone starts empty: the clones are the undo journal's pre-images, which are read
+/// again only after a rollback.
+#[derive(Debug, Default)]
+struct DiscCache(OnceLock<DiscChunks>);
+
+impl Clone for DiscCache {
+    fn clone(&self) -> Self {
+        DiscCache::default()
+    }
+}
+
+/// Events per chunk of [`DiscChunks`]: the widest register's lanes (AVX-512), a multiple
+/// of every narrower one's.
+pub(crate) const DISC_LANES: usize = 16;
+
+/// The listed events' centres and full radii laid out for SIMD lanes: chunks of
+/// [`DISC_LANES`] events, each chunk their `x`, then their `y`, then their radii, so that a
+/// register loads one coordinate of consecutive events. The last chunk is padded with a
+/// disc at `x = +inf` of radius 0, whose negated distance from any finite point is
+/// `-inf`, which no running maximum takes unless every operand is `-inf` (the same bits).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct DiscChunks(Vec<f32>);
+
+impl DiscChunks {
+    const CHUNK: usize = 3 * DISC_LANES;
+
+    fn of(events: &[Listed]) -> DiscChunks {
+        let mut d = DiscChunks(Vec::new());
+        for (k, e) in events.iter().enumerate() {
+            d.set(k, e);
+        }
+        d
+    }
+
+    /// Writes event `e` at position `k`, adding a padded chunk when `k` starts one.
+    fn set(&mut self, k: usize, e: &Listed) {
+        let (chunk, lane) = (k / DISC_LANES, k % DISC_LANES);
+        if lane == 0 {
+            self.0.truncate(chunk * Self::CHUNK);
+            self.0.extend_from_slice(&[f32::INFINITY; DISC_LANES]);
+            self.0.extend_from_slice(&[0.0; 2 * DISC_LANES]);
+        }
+        let at = chunk * Self::CHUNK + lane;
+        if let Some(slots) = self.0.get_mut(at..=at + 2 * DISC_LANES) {
+            let c = e.center_f32();
+            slots[0] = c.x;
+            slots[DISC_LANES] = c.y;
+            slots[2 * DISC_LANES] = e.radius_f32();
+        }
+    }
+
+    /// The chunks, `3 * DISC_LANES` floats each.
+    pub(crate) fn chunks(&self) -> &[f32] {
+        &self.0
+    }
 }
 
 impl Deref for EventList {
@@ -103,6 +166,7 @@ impl EventList {
         Some(EventList {
             indices: indices.to_vec(),
             others: others(&events),
+            discs: DiscCache::default(),
             events,
         })
     }
@@ -124,12 +188,19 @@ impl EventList {
         self.others += usize::from(!listed.is_sharp_carve());
         self.indices.push(index);
         self.events.push(listed);
+        self.discs = DiscCache::default();
+    }
+
+    /// The listed events' discs, for lanes.
+    pub(crate) fn discs(&self) -> &DiscChunks {
+        self.discs.0.get_or_init(|| DiscChunks::of(&self.events))
     }
 
     pub(crate) fn clear(&mut self) {
         self.indices.clear();
         self.events.clear();
         self.others = 0;
+        self.discs = DiscCache::default();
     }
 
     /// Drops the last event.
@@ -137,6 +208,7 @@ impl EventList {
         self.indices.pop();
         if let Some(e) = self.events.pop() {
             self.others -= usize::from(!e.is_sharp_carve());
+            self.discs = DiscCache::default();
         }
     }
 
@@ -146,6 +218,7 @@ impl EventList {
             self.indices.remove(pos);
             let e = self.events.remove(pos);
             self.others -= usize::from(!e.is_sharp_carve());
+            self.discs = DiscCache::default();
         }
     }
 
@@ -155,6 +228,7 @@ impl EventList {
         self.indices.drain(..n);
         self.events.drain(..n);
         self.others = others(&self.events);
+        self.discs = DiscCache::default();
     }
 
     /// Rewrites the indices through `renumber` (compaction dropped events before them;
@@ -189,6 +263,7 @@ mod tests {
         list.pop();
         list.push(1, log[1]);
         assert_eq!(&list[..], &[3, 4, 1]);
+        assert_eq!(list.discs(), &DiscChunks::of(list.listed()));
         let expected: Vec<Event> = list.iter().map(|&i| log[i as usize]).collect();
         let copies: Vec<Event> = list.listed().iter().map(|l| *l.event()).collect();
         assert_eq!(copies, expected);
@@ -229,6 +304,54 @@ mod tests {
         assert!(sharp(&list));
         assert!(sharp(&EventList::from_log(&[0, 3, 4], &log).unwrap()));
         assert!(!sharp(&EventList::from_log(&[2], &log).unwrap()));
+    }
+
+    /// The lanes' discs follow the list through pushes across chunk boundaries, pops,
+    /// removals and dropped prefixes: each event's centre and radius at its lane, the
+    /// rest of the last chunk padding.
+    #[test]
+    fn discs_follow_every_edit() {
+        let log: Vec<Event> = (0..40)
+            .map(|k| Event::carve(Vec2::new(k as f32, -(k as f32)), 1.0 + k as f32).unwrap())
+            .collect();
+        let mut list = EventList::default();
+        let check = |list: &EventList| {
+            let chunks = list.discs().chunks();
+            assert_eq!(
+                chunks.len(),
+                list.len().div_ceil(DISC_LANES) * 3 * DISC_LANES
+            );
+            for (slot, chunk) in chunks.chunks(3 * DISC_LANES).enumerate() {
+                for lane in 0..DISC_LANES {
+                    let (x, y, r) = (
+                        chunk[lane],
+                        chunk[DISC_LANES + lane],
+                        chunk[2 * DISC_LANES + lane],
+                    );
+                    match list.listed().get(slot * DISC_LANES + lane) {
+                        Some(e) => assert_eq!(
+                            (x, y, r),
+                            (e.center_f32().x, e.center_f32().y, e.radius_f32())
+                        ),
+                        None => assert_eq!((x, y, r), (f32::INFINITY, 0.0, 0.0)),
+                    }
+                }
+            }
+        };
+        for (k, e) in log.iter().enumerate() {
+            list.push(k as u32, *e);
+            check(&list);
+        }
+        list.pop();
+        check(&list);
+        list.remove(16);
+        check(&list);
+        list.drop_prefix(7);
+        check(&list);
+        list.push(39, log[39]);
+        check(&list);
+        list.clear();
+        check(&list);
     }
 
     #[test]

@@ -28,6 +28,7 @@ pub(crate) use floors::FloorGrid;
 pub(in crate::terrain) use journal::Entry;
 use journal::Journal;
 pub use journal::{RollbackError, TerrainMark};
+pub(crate) use list::DISC_LANES;
 pub(crate) use list::{EventList, Listed};
 
 /// Most cells a grid may have, so that memory stays bounded.
