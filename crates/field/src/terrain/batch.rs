@@ -617,6 +617,10 @@ fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
 ) -> ([V; NB], [L::I; NB]) {
     let used = used.min(NB);
     let band = t.options.band;
+    if let Some((d, m)) = constant_start(start, band) {
+        // No tape to run: the base beyond the band (or air over it) and one material.
+        return ([V::cst(l, d); NB], [l.splat_i(i32::from(m)); NB]);
+    }
     let mut ds = [V::cst(l, band); NB];
     let mut mats = [l.splat_i(0); NB];
     match start {
@@ -637,10 +641,8 @@ fn start_with_materials<L: Lanes, V: Val<L>, F: Sdf, const NB: usize>(
                 }
             }
         }
-        Start::Constant(c, m) => {
-            ds = [V::cst(l, *c); NB];
-            mats = [l.splat_i(i32::from(m.unwrap_or(0))); NB];
-        }
+        // Answered by `constant_start` above.
+        Start::Constant(..) => {}
         Start::AirFromBrick(id) | Start::Brick(id) => {
             let baked = matches!(start, Start::Brick(_));
             for r in 0..used {
@@ -715,23 +717,31 @@ fn constant_sample(start: &Start<'_>, no_events: bool, band: f32) -> Option<Samp
     if !no_events {
         return None;
     }
-    let (distance, material) = match start {
-        Start::Constant(v, m) => (*v, m.unwrap_or(0)),
-        Start::Base(plan) => match (plan.clamped, plan.material.material()) {
-            (Some(c), MatOut::Const(m)) => (c, m),
-            _ => return None,
-        },
-        Start::AirFromBase(plan) => match plan.material.material() {
-            MatOut::Const(m) => (band, m),
-            MatOut::Value(_) => return None,
-        },
-        Start::AirFromBrick(_) | Start::Brick(_) => return None,
-    };
+    let (distance, material) = constant_start(start, band)?;
     Some(Sample {
         distance,
         gradient: Vec2::ZERO,
         material,
     })
+}
+
+/// The value (with a zero gradient) and material a state gives everywhere in its cell,
+/// where it is constant there: a constant state, or a base clamped over the whole cell (or
+/// the air over it) whose material is the same everywhere: no lane needs the base's tape,
+/// which a bake in the ground beyond the band otherwise ran for that one material.
+fn constant_start(start: &Start<'_>, band: f32) -> Option<(f32, MaterialId)> {
+    match start {
+        Start::Constant(v, m) => Some((*v, m.unwrap_or(0))),
+        Start::Base(plan) => match (plan.clamped, plan.material.material()) {
+            (Some(c), MatOut::Const(m)) => Some((c, m)),
+            _ => None,
+        },
+        Start::AirFromBase(plan) => match plan.material.material() {
+            MatOut::Const(m) => Some((band, m)),
+            MatOut::Value(_) => None,
+        },
+        Start::AirFromBrick(_) | Start::Brick(_) => None,
+    }
 }
 
 /// Lane register `r` of the gathered points as a point of numbers (padding repeats the
