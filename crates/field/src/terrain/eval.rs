@@ -382,6 +382,7 @@ mod tests {
     use crate::sdf::Sdf;
     use crate::terrain::{CellState, Terrain};
     use crate::{Event, Graph, Level};
+    use craterfield_core::backend::Backend;
     use craterfield_core::det::math::Dual;
 
     /// Random events on the default level: carves and fills, some wide enough to reset
@@ -536,9 +537,10 @@ mod tests {
             rims.push(c + Vec2::new(r, 0.0));
         }
         let long = |p: Vec2| {
-            let cell = t.grid.cell_index(p)?;
-            let c = t.grid.stored_cell(cell)?;
-            (c.folds_carves(t.tick) && c.events.len() >= super::LANES_FROM).then_some(())
+            (t.grid
+                .cell_index(p)
+                .and_then(|cell| t.grid.stored_cell(cell)))
+            .is_some_and(|c| c.folds_carves(t.tick) && c.events.len() >= super::LANES_FROM)
         };
         let mut points: Vec<Vec2> = (0..4000)
             .map(|_| {
@@ -549,7 +551,7 @@ mod tests {
             })
             .collect();
         points.extend(rims);
-        let on_long = points.iter().filter(|&&p| long(p).is_some()).count();
+        let on_long = points.iter().filter(|&&p| long(p)).count();
         assert!(on_long > 2000, "{on_long} points in long carve lists");
         // The reference: the chain, which the scalar backend runs (in a brick cell the
         // brute force has no brick to read, so it is the reference only elsewhere).
@@ -561,7 +563,6 @@ mod tests {
                 s.material,
             )
         };
-        use craterfield_core::backend::Backend;
         t.set_backend(Backend::Scalar).unwrap();
         let reference: Vec<_> = points
             .iter()

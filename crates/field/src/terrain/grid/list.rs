@@ -118,28 +118,16 @@ impl DiscChunks {
     const CHUNK: usize = 3 * DISC_LANES;
 
     fn of(events: &[Listed]) -> DiscChunks {
-        let mut d = DiscChunks(Vec::new());
-        for (k, e) in events.iter().enumerate() {
-            d.set(k, e);
+        let mut chunks = Vec::with_capacity(events.len().div_ceil(DISC_LANES) * Self::CHUNK);
+        for group in events.chunks(DISC_LANES) {
+            let lanes = |of: fn(&Listed) -> f32, pad: f32| {
+                (0..DISC_LANES).map(move |k| group.get(k).map_or(pad, of))
+            };
+            chunks.extend(lanes(|e| e.center_f32().x, f32::INFINITY));
+            chunks.extend(lanes(|e| e.center_f32().y, 0.0));
+            chunks.extend(lanes(Listed::radius_f32, 0.0));
         }
-        d
-    }
-
-    /// Writes event `e` at position `k`, adding a padded chunk when `k` starts one.
-    fn set(&mut self, k: usize, e: &Listed) {
-        let (chunk, lane) = (k / DISC_LANES, k % DISC_LANES);
-        if lane == 0 {
-            self.0.truncate(chunk * Self::CHUNK);
-            self.0.extend_from_slice(&[f32::INFINITY; DISC_LANES]);
-            self.0.extend_from_slice(&[0.0; 2 * DISC_LANES]);
-        }
-        let at = chunk * Self::CHUNK + lane;
-        if let Some(slots) = self.0.get_mut(at..=at + 2 * DISC_LANES) {
-            let c = e.center_f32();
-            slots[0] = c.x;
-            slots[DISC_LANES] = c.y;
-            slots[2 * DISC_LANES] = e.radius_f32();
-        }
+        DiscChunks(chunks)
     }
 
     /// The chunks, `3 * DISC_LANES` floats each.
