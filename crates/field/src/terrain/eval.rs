@@ -423,6 +423,21 @@ mod tests {
         t
     }
 
+    /// `n` points uniform in the rectangle at `min` of side lengths `size`.
+    fn random_points(
+        unit: &mut impl FnMut() -> f64,
+        n: usize,
+        min: (f32, f32),
+        size: (f32, f32),
+    ) -> Vec<Vec2> {
+        (0..n)
+            .map(|_| {
+                let x = min.0 + unit() as f32 * size.0;
+                Vec2::new(x, min.1 + unit() as f32 * size.1)
+            })
+            .collect()
+    }
+
     /// The sample on values with the winner's gradient has every bit of the sample on
     /// duals (value, gradient, material), in every kind of cell, where each kind of term
     /// wins, at random points, at lattice points and on cell edges, bricks with a flat
@@ -434,14 +449,7 @@ mod tests {
             let mut unit = crate::test_rng::unit_f64(seed ^ 0x77);
             let size = t.grid().cell_size();
             let h = t.grid().brick_spacing();
-            let mut points: Vec<Vec2> = (0..40_000)
-                .map(|_| {
-                    Vec2::new(
-                        1000.0 + unit() as f32 * 700.0,
-                        300.0 + unit() as f32 * 500.0,
-                    )
-                })
-                .collect();
+            let mut points = random_points(&mut unit, 40_000, (1000.0, 300.0), (700.0, 500.0));
             let origin = t.grid().origin();
             for i in 0..200 {
                 let q = Vec2::new(
@@ -542,14 +550,7 @@ mod tests {
                 .and_then(|cell| t.grid.stored_cell(cell)))
             .is_some_and(|c| c.folds_carves(t.tick) && c.events.len() >= super::LANES_FROM)
         };
-        let mut points: Vec<Vec2> = (0..4000)
-            .map(|_| {
-                Vec2::new(
-                    1050.0 + unit() as f32 * 500.0,
-                    350.0 + unit() as f32 * 400.0,
-                )
-            })
-            .collect();
+        let mut points = random_points(&mut unit, 4000, (1050.0, 350.0), (500.0, 400.0));
         points.extend(rims);
         let on_long = points.iter().filter(|&&p| long(p)).count();
         assert!(on_long > 2000, "{on_long} points in long carve lists");
