@@ -303,3 +303,75 @@ fn moving_the_tick_back_after_compaction_is_refused_without_change() {
     )
     .unwrap();
 }
+
+/// Where clear runs ([`Sdf::clear_run`]) from a lattice of points around the edits end,
+/// along eight directions and at two thresholds, as bits. The terrain keeps per-cell
+/// bounds for these runs, computed on the first run that asks: asking here fills them.
+fn clear_run_fingerprint(t: &Terrain<craterfield::field2d::Graph>) -> Vec<u32> {
+    let mut out = Vec::new();
+    for j in 0..24 {
+        for i in 0..36 {
+            let p = Vec2::new(1080.0 + i as f32 * 13.1, 330.0 + j as f32 * 19.7);
+            for k in 0..8 {
+                let dir = Vec2::from_angle(k as f32 * std::f32::consts::FRAC_PI_4 + 0.1);
+                for above in [1.0e-3, 6.0] {
+                    let run = t.clear_run(p, dir, above);
+                    out.extend([run.clear.to_bits(), run.retry_after.to_bits()]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A terrain asked for clear runs between its edits (so that it holds bounds computed
+/// before each edit), rolled back and forth, and restored from a state, ends with the
+/// clear runs of a terrain that was never asked until the end: no bound outlives the
+/// cell it was computed for (a fill into air, a bake, a rollback, a restore).
+#[test]
+fn clear_runs_follow_every_edit_rollback_and_restore() {
+    for seed in 0..2u64 {
+        let steps = script(seed + 40, 300);
+        let mut straight = terrain();
+        run(&mut straight, &steps);
+        let mut rng = Rng(seed ^ 0x5eed);
+        let mut t = terrain();
+        let mut done = 0;
+        let mut marks = vec![(0, t.mark().unwrap())];
+        let mut runs_changed = 0;
+        let mut last = clear_run_fingerprint(&t);
+        while done < steps.len() {
+            let upto = (done + 1 + (rng.next() % 30) as usize).min(steps.len());
+            run(&mut t, &steps[done..upto]);
+            done = upto;
+            marks.push((done, t.mark().unwrap()));
+            if rng.unit() < 0.4 {
+                let k = (rng.next() % marks.len() as u64) as usize;
+                let (at, m) = marks[k];
+                t.rollback(&m).unwrap();
+                marks.truncate(k + 1);
+                done = at;
+            }
+            let now = clear_run_fingerprint(&t);
+            runs_changed += usize::from(now != last);
+            last = now;
+        }
+        assert!(
+            runs_changed > 3,
+            "seed {seed}: the edits changed the runs only {runs_changed} times"
+        );
+        assert!(
+            clear_run_fingerprint(&t) == clear_run_fingerprint(&straight),
+            "seed {seed}: clear runs differ after edits and rollbacks"
+        );
+        // A state restored over a terrain that holds bounds of another history.
+        let mut restored = terrain();
+        run(&mut restored, &script(seed + 90, 200));
+        let _ = clear_run_fingerprint(&restored);
+        restored.restore_state(&straight.state()).unwrap();
+        assert!(
+            clear_run_fingerprint(&restored) == clear_run_fingerprint(&straight),
+            "seed {seed}: clear runs differ after a restore"
+        );
+    }
+}

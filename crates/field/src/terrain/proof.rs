@@ -312,6 +312,15 @@ impl<F: Sdf> Terrain<F> {
         }
     }
 
+    /// The low end of cell `cell`'s starting range over the whole cell (`None` for a
+    /// brick, whose range depends on the rectangle).
+    pub(super) fn start_low(&self, cell: usize) -> Option<f32> {
+        match self.proof_start(cell) {
+            Start::Range(lo, _) => Some(lo),
+            Start::Brick(_) => None,
+        }
+    }
+
     /// The bounds of starting state `start` of cell `cell` over the rectangle `[min, max]`.
     fn start_bounds(&self, start: Start, cell: usize, min: Vec2, max: Vec2) -> (f32, f32) {
         let m = self.options.band;

@@ -76,7 +76,11 @@ impl<F: Sdf> Terrain<F> {
             let index = y.i as usize * nx as usize + x.i as usize;
             let (exit_x, exit_y) = (x.exit(size), y.exit(size));
             let exit = exit_x.min(exit_y).max(s);
-            if let Some((from, to)) = self.unproven_piece(index, &ray, s, exit) {
+            let cleared = self.cell_low(index) >= above;
+            if let Some((from, to)) = (!cleared)
+                .then(|| self.unproven_piece(index, &ray, s, exit))
+                .flatten()
+            {
                 return ClearRun {
                     clear: f32_at_most(from),
                     retry_after: (to - from) as f32,
@@ -91,6 +95,29 @@ impl<F: Sdf> Terrain<F> {
                     retry_after: 0.0,
                 };
             }
+        }
+    }
+
+    /// A lower bound of cell `cell`'s field over the whole cell: its starting range's low
+    /// end where the list holds carves alone (which only raise the field), else `-inf`.
+    /// A piece of a ray in a cell at least `above` is proven as [`Terrain::rect_above`]
+    /// proves it first, without reading the cell: kept in the grid's dense `CellLows`.
+    #[inline]
+    fn cell_low(&self, cell: usize) -> f32 {
+        let lows = self.grid.cell_lows();
+        if let Some(low) = lows.get(cell) {
+            return low;
+        }
+        let low = self.uncached_low(cell);
+        lows.set(cell, low);
+        low
+    }
+
+    #[cold]
+    fn uncached_low(&self, cell: usize) -> f32 {
+        match self.grid.stored_cell(cell) {
+            Some(c) if c.lists_carves_only() => self.start_low(cell).unwrap_or(f32::NEG_INFINITY),
+            _ => f32::NEG_INFINITY,
         }
     }
 
@@ -207,14 +234,16 @@ impl<F: Sdf> Terrain<F> {
     fn clear_outside(&self, p: Vec2, dir: Vec2, above: f32) -> ClearRun {
         let (p64, d64) = (p.as_dvec2(), dir.as_dvec2());
         let slack = point_slack(p64);
-        let tile = self.cell_tapes.as_ref().map(|t| t.outside(p));
-        let clear = match tile {
-            Some((plan, Some((min, max)))) if plan.range.0 >= above => {
-                // Back by the slack: the caller's next point lands inside the tile's
-                // rectangle, or in the next tile, which answers for itself.
-                square_exit(p64, d64, min.as_dvec2(), max.as_dvec2()) - slack
-            }
-            _ => {
+        let entry = self.grid_entry(p64, d64);
+        let tiles = self
+            .cell_tapes
+            .as_ref()
+            .and_then(|t| t.proven_tiles(p, d64, above, entry.unwrap_or(f64::INFINITY)));
+        let clear = match tiles {
+            // Back by the slack: the caller's next point lands inside the last tile's
+            // rectangle, or in the next tile, which answers for itself.
+            Some(run) => run - slack,
+            None => {
                 let l = self.lipschitz();
                 let (d, _) = self.base_at::<f32>(p, None, false);
                 let reach = f64::from(d - above) / f64::from(l);
@@ -229,7 +258,7 @@ impl<F: Sdf> Terrain<F> {
                 reach * (1.0 - 1.0e-6) - slack
             }
         };
-        let clear = match self.grid_entry(p64, d64) {
+        let clear = match entry {
             Some(enter) => clear.min(enter),
             None => clear,
         };
@@ -316,22 +345,4 @@ struct Piece {
     above: f32,
     /// What a brick's lattice walk needs of the ray.
     walk: WalkRay,
-}
-
-/// Distance along `d` from `p` (inside the rectangle `[min, max]`) to its far side.
-fn square_exit(p: DVec2, d: DVec2, min: DVec2, max: DVec2) -> f64 {
-    let x = axis_exit(p.x, d.x, min.x, max.x);
-    x.min(axis_exit(p.y, d.y, min.y, max.y)).max(0.0)
-}
-
-/// Distance along one axis's direction `d` from `p` to the side of `[lo, hi]` it moves
-/// towards (infinite when it does not move).
-fn axis_exit(p: f64, d: f64, lo: f64, hi: f64) -> f64 {
-    if d > 0.0 {
-        (hi - p) / d
-    } else if d < 0.0 {
-        (lo - p) / d
-    } else {
-        f64::INFINITY
-    }
 }

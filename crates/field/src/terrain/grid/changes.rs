@@ -12,7 +12,7 @@
 //! same change without recording again (checked in debug builds).
 
 use super::journal::{Entry, Journal, RollbackError, TerrainMark};
-use super::{Brick, Cell, CellState, CellStateSlot, Grid, GridStats, PartialBake};
+use super::{Brick, Cell, CellLows, CellState, CellStateSlot, Grid, GridStats, PartialBake};
 
 impl Grid {
     /// Starts keeping the undo journal (nothing changes when it is kept already).
@@ -89,6 +89,7 @@ impl Grid {
             Entry::Cell { cell, before, .. } => {
                 if let Some(c) = self.cells.get_mut(cell) {
                     *c = before;
+                    self.lows.forget(cell);
                 }
             }
             Entry::Brick { id, before } => {
@@ -156,6 +157,7 @@ impl Grid {
         over_cap: bool,
     ) -> Option<&mut Cell> {
         self.recorded_cell = Some(cell);
+        self.lows.forget(cell);
         let c = self.cells.get_mut(cell)?;
         if let Some(j) = &mut self.journal {
             let before = c.clone();
@@ -172,6 +174,7 @@ impl Grid {
     /// started: its pre-image already undoes this edit, so nothing is recorded.
     pub(in crate::terrain) fn edit_recorded_cell(&mut self, cell: usize) -> Option<&mut Cell> {
         self.debug_check_recorded(cell);
+        self.lows.forget(cell);
         self.cells.get_mut(cell)
     }
 
@@ -189,6 +192,7 @@ impl Grid {
     /// freeing (and journaling) a brick it no longer references.
     pub(in crate::terrain) fn set_state(&mut self, cell: usize, state: CellState) {
         self.debug_check_recorded(cell);
+        self.lows.forget(cell);
         let Some(c) = self.cells.get_mut(cell) else {
             return;
         };
@@ -261,6 +265,7 @@ impl Grid {
             *c = Cell::default();
             c.revision = fresh_revision();
         }
+        self.lows.forget_all();
         self.bricks.clear();
         self.free_bricks.clear();
         self.stats = GridStats::default();
@@ -277,6 +282,7 @@ impl Grid {
         free_bricks: Vec<u32>,
         stats: GridStats,
     ) {
+        self.lows = CellLows::new(cells.len());
         self.cells = cells;
         self.bricks = bricks;
         self.free_bricks = free_bricks;

@@ -21,6 +21,7 @@ mod changes;
 mod floors;
 mod journal;
 mod list;
+mod lows;
 
 pub(crate) use cell::{Brick, Cell, CellStateSlot, PartialBake};
 pub use cell::{CellState, GridStats, MaterialSource};
@@ -30,6 +31,7 @@ use journal::Journal;
 pub use journal::{RollbackError, TerrainMark};
 pub(crate) use list::DISC_LANES;
 pub(crate) use list::{EventList, Listed};
+pub(crate) use lows::CellLows;
 
 /// Most cells a grid may have, so that memory stays bounded.
 pub const MAX_CELLS: u64 = 4_000_000;
@@ -171,6 +173,8 @@ pub struct Grid {
     ny: u32,
     resolution: u32,
     cells: Vec<Cell>,
+    /// Each cell's lower bound for ray walks, forgotten by every edit of the cell.
+    lows: CellLows,
     bricks: Vec<Brick>,
     free_bricks: Vec<u32>,
     stats: GridStats,
@@ -225,6 +229,7 @@ impl Grid {
             ny,
             resolution,
             cells: vec![Cell::default(); nx as usize * ny as usize],
+            lows: CellLows::new(nx as usize * ny as usize),
             bricks: Vec::new(),
             free_bricks: Vec::new(),
             stats: GridStats::default(),
@@ -428,6 +433,11 @@ impl Grid {
     /// Cell `i` as stored, for the terrain's own reads (`None` past the end).
     pub(in crate::terrain) fn stored_cell(&self, i: usize) -> Option<&Cell> {
         self.cells.get(i)
+    }
+
+    /// The cells' lower bounds for ray walks, as far as computed.
+    pub(in crate::terrain) fn cell_lows(&self) -> &CellLows {
+        &self.lows
     }
 
     /// Every cell as stored, row-major, for the terrain's own reads.
