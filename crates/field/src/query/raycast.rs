@@ -46,9 +46,10 @@ pub struct RayHit {
 /// Casts a ray from `origin` along `dir` (normalized internally) up to distance `max_t`.
 ///
 /// Sphere tracing: from `t`, the disc of radius `d(p(t)) / L` is clear of the surface. Steps
-/// are over-relaxed (1.6 times that radius) and kept only where the disc at the landing
-/// point overlaps the last one, so the two together clear the whole step; otherwise the
-/// march takes the plain step and steps plainly from then on. No crossing is ever skipped
+/// are over-relaxed (1.6 times that radius, except within 32 times `hit_epsilon` of the
+/// surface) and kept only where the disc at the landing point overlaps the last one, so
+/// the two together clear the whole step; otherwise the march takes the plain step and
+/// steps plainly from then on. No crossing is ever skipped
 /// whatever the feature thickness. A hit is reported when `d / L < hit_epsilon`. Stretches
 /// that the field proves clear ([`Sdf::clear_run`]: a terrain's cells of air, and the
 /// base's clearance outside its grid) are crossed without evaluating it.
@@ -206,7 +207,11 @@ pub(crate) fn march<F: Sdf>(
             continue;
         }
         // Over-relaxed: a ray grazing a wall sees gaps that shrink slowly, and steps past
-        // them by `RELAX` are checked at the next evaluation (Keinert et al. 2014).
+        // them by `RELAX` are checked at the next evaluation (Keinert et al. 2014). Not
+        // within `RELAX_FROM` hit tolerances of the surface: a relaxed step is kept only
+        // where it lands with a gap of `(RELAX - 1) g + eps`, which a ray closing in on
+        // the surface there almost never has, and the failed step costs an evaluation.
+        let relax = if g > RELAX_FROM * eps { relax } else { 1.0 };
         let far = (t + relax * g).min(max_t);
         relaxed = far > next;
         t = if relaxed { far } else { next };
@@ -259,6 +264,11 @@ impl Skips {
 /// the gap where it lands overlaps the last one. Fewer evaluations for grazing rays; the
 /// first step that fails costs one evaluation, and the march steps plainly after it.
 const RELAX: f32 = 1.6;
+
+/// Gaps up to this many hit tolerances take plain steps (see [`march`]): measured on rays
+/// ending at cratered terrain, 8, 32 and 128 save the same evaluations (8.33 -> 7.95 per
+/// ray that hits), 32 is in the middle.
+const RELAX_FROM: f32 = 32.0;
 
 /// Bisects `[lo, hi]` (`g(lo) >= 0 > g(hi)`) for a point with `0 <= g < eps`, keeping the
 /// clear end. Returns `(t, point, g, evaluations)`.
