@@ -17,6 +17,9 @@ const BLOCKS: usize = 8;
 #[derive(Clone, Debug)]
 pub(crate) struct BlockFloors {
     floors: [f32; BLOCKS * BLOCKS],
+    /// The least floor of each row of blocks (NaN where one is): a ray's piece over a
+    /// brick's air spans rows whose every block clears it, decided one row at a time.
+    row_floors: [f32; BLOCKS],
     /// Lattice squares per block side (the last block of a row may have fewer).
     squares: u32,
     /// Blocks per side.
@@ -28,6 +31,7 @@ impl Default for BlockFloors {
     fn default() -> Self {
         BlockFloors {
             floors: [f32::NEG_INFINITY; BLOCKS * BLOCKS],
+            row_floors: [f32::NEG_INFINITY; BLOCKS],
             squares: 1,
             side: 1,
         }
@@ -46,6 +50,7 @@ impl BlockFloors {
         let side = n.div_ceil(squares);
         let mut out = BlockFloors {
             floors: [f32::INFINITY; BLOCKS * BLOCKS],
+            row_floors: [f32::INFINITY; BLOCKS],
             squares,
             side,
         };
@@ -83,6 +88,13 @@ impl BlockFloors {
                 true => f32::NAN,
                 false => out.floors[k] - largest[k] * (1.0 / 262_144.0),
             };
+            // NaN wins: a row with a NaN floor proves nothing at once.
+            let row = &mut out.row_floors[k / side_us];
+            *row = if out.floors[k] < *row || out.floors[k].is_nan() {
+                out.floors[k]
+            } else {
+                *row
+            };
         }
         out
     }
@@ -110,6 +122,7 @@ impl BlockFloors {
             block: f64::from(spacing) * f64::from(self.squares),
             side: self.side,
             floors: &self.floors[..side * side],
+            row_floors: &self.row_floors[..side],
         }
     }
 }
@@ -126,6 +139,8 @@ pub(crate) struct FloorGrid<'a> {
     pub side: u32,
     /// The floors, row-major (y outer), `side * side` of them.
     pub floors: &'a [f32],
+    /// The least floor of each row (`side` of them).
+    pub row_floors: &'a [f32],
 }
 
 impl FloorGrid<'_> {
@@ -145,6 +160,9 @@ impl FloorGrid<'_> {
         }
         let columns = ki0 as usize..=ki1 as usize;
         (kj0 as usize..=kj1 as usize).all(|kj| {
+            if self.row_floors.get(kj).is_some_and(|&f| f >= above) {
+                return true;
+            }
             let row = self.floors.get(kj * side..(kj + 1) * side);
             row.and_then(|r| r.get(columns.clone()))
                 .is_some_and(|r| r.iter().all(|&f| f >= above))
@@ -205,6 +223,34 @@ mod tests {
                         .fold(f32::INFINITY, f32::min);
                     let floor = f.floors[(kj * f.side + ki) as usize];
                     assert!(floor <= least && floor > least - 1e-3, "{floor} {least}");
+                }
+            }
+        }
+    }
+
+    /// A rectangle of blocks is proven exactly when each of its floors is at least the
+    /// threshold, whether its rows are decided by their least floor or block by block.
+    #[test]
+    fn a_rectangle_is_proven_when_every_floor_in_it_is() {
+        let mut unit = crate::test_rng::unit_f64(11);
+        for n in [8u32, 32, 33] {
+            let row = (n + 1) as usize;
+            for _ in 0..200 {
+                // Bricks with air above a surface, as a ray's pieces meet them.
+                let slope = unit() * 4.0;
+                let values: Vec<f32> = (0..row * row)
+                    .map(|k| ((k / row) as f64 * slope - 20.0 + unit() * 6.0) as f32)
+                    .collect();
+                let f = BlockFloors::of(&values, n);
+                let grid = f.over(Vec2::ZERO, 1.0);
+                for _ in 0..50 {
+                    let [a, b, c, d] = [0; 4].map(|_| (unit() * f64::from(f.side)) as u32);
+                    let (is, js) = ((a.min(b), a.max(b)), (c.min(d), c.max(d)));
+                    let above = (unit() * 80.0 - 30.0) as f32;
+                    let every = (js.0..=js.1).all(|kj| {
+                        (is.0..=is.1).all(|ki| f.floors[(kj * f.side + ki) as usize] >= above)
+                    });
+                    assert_eq!(grid.at_least(is, js, above), every, "{is:?} {js:?} {above}");
                 }
             }
         }
