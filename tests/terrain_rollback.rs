@@ -54,6 +54,35 @@ fn run(t: &mut Terrain<craterfield::field2d::Graph>, steps: &[Step]) {
     }
 }
 
+/// Runs `steps` on `t` in chunks of 1 to 40, marking after each and, half the time, going
+/// back to a random earlier mark and redoing from there; `after_each` sees the terrain
+/// after every chunk (and rollback).
+fn run_with_rollbacks(
+    t: &mut Terrain<craterfield::field2d::Graph>,
+    steps: &[Step],
+    seed: u64,
+    mut after_each: impl FnMut(&Terrain<craterfield::field2d::Graph>),
+) {
+    let mut rng = Rng(seed);
+    let mut done = 0;
+    let mut marks = vec![(0, t.mark().unwrap())];
+    while done < steps.len() {
+        let upto = (done + 1 + (rng.next() % 40) as usize).min(steps.len());
+        run(t, &steps[done..upto]);
+        done = upto;
+        marks.push((done, t.mark().unwrap()));
+        if rng.unit() < 0.5 {
+            let k = (rng.next() % marks.len() as u64) as usize;
+            let (at, m) = marks[k];
+            t.rollback(&m).unwrap();
+            assert_eq!(t.events_applied(), m.events());
+            marks.truncate(k + 1);
+            done = at;
+        }
+        after_each(t);
+    }
+}
+
 fn fingerprint(t: &Terrain<craterfield::field2d::Graph>) -> Vec<u32> {
     let mut out = Vec::new();
     for j in 0..60 {
@@ -90,25 +119,8 @@ fn rollback_then_replay_matches_a_straight_run() {
         run(&mut straight, &steps);
         assert!(straight.stats().bakes > 0, "the script must bake bricks");
 
-        let mut rng = Rng(seed ^ 0xabc);
         let mut t = terrain();
-        let mut done = 0;
-        let mut marks = vec![(0, t.mark().unwrap())];
-        while done < steps.len() {
-            let upto = (done + 1 + (rng.next() % 40) as usize).min(steps.len());
-            run(&mut t, &steps[done..upto]);
-            done = upto;
-            marks.push((done, t.mark().unwrap()));
-            // Sometimes go back to an earlier mark and redo from there.
-            if rng.unit() < 0.5 {
-                let k = (rng.next() % marks.len() as u64) as usize;
-                let (at, m) = marks[k];
-                t.rollback(&m).unwrap();
-                assert_eq!(t.events_applied(), m.events());
-                marks.truncate(k + 1);
-                done = at;
-            }
-        }
+        run_with_rollbacks(&mut t, &steps, seed ^ 0xabc, |_| {});
         assert_eq!(t.events(), straight.events(), "seed {seed}");
         assert_eq!(t.tick(), straight.tick());
         assert_eq!(t.stats(), straight.stats(), "seed {seed}");
@@ -334,28 +346,14 @@ fn clear_runs_follow_every_edit_rollback_and_restore() {
         let steps = script(seed + 40, 300);
         let mut straight = terrain();
         run(&mut straight, &steps);
-        let mut rng = Rng(seed ^ 0x5eed);
         let mut t = terrain();
-        let mut done = 0;
-        let mut marks = vec![(0, t.mark().unwrap())];
         let mut runs_changed = 0;
         let mut last = clear_run_fingerprint(&t);
-        while done < steps.len() {
-            let upto = (done + 1 + (rng.next() % 30) as usize).min(steps.len());
-            run(&mut t, &steps[done..upto]);
-            done = upto;
-            marks.push((done, t.mark().unwrap()));
-            if rng.unit() < 0.4 {
-                let k = (rng.next() % marks.len() as u64) as usize;
-                let (at, m) = marks[k];
-                t.rollback(&m).unwrap();
-                marks.truncate(k + 1);
-                done = at;
-            }
-            let now = clear_run_fingerprint(&t);
+        run_with_rollbacks(&mut t, &steps, seed ^ 0x5eed, |t| {
+            let now = clear_run_fingerprint(t);
             runs_changed += usize::from(now != last);
             last = now;
-        }
+        });
         assert!(
             runs_changed > 3,
             "seed {seed}: the edits changed the runs only {runs_changed} times"
