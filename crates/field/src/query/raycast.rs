@@ -49,8 +49,8 @@ pub struct RayHit {
 /// are over-relaxed (1.6 times that radius, except within 32 times `hit_epsilon` of the
 /// surface) and kept only where the disc at the landing point overlaps the last one, so
 /// the two together clear the whole step; otherwise the march takes the plain step and
-/// steps plainly from then on. No crossing is ever skipped
-/// whatever the feature thickness. A hit is reported when `d / L < hit_epsilon`. Stretches
+/// steps plainly from then on. No crossing is ever skipped whatever the feature
+/// thickness. A hit is reported when `d / L < hit_epsilon`. Stretches
 /// that the field proves clear ([`Sdf::clear_run`]: a terrain's cells of air, and the
 /// base's clearance outside its grid) are crossed without evaluating it.
 ///

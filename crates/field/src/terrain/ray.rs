@@ -77,10 +77,7 @@ impl<F: Sdf> Terrain<F> {
             let (exit_x, exit_y) = (x.exit(size), y.exit(size));
             let exit = exit_x.min(exit_y).max(s);
             let cleared = self.cell_low(index) >= above;
-            if let Some((from, to)) = (!cleared)
-                .then(|| self.unproven_piece(index, &ray, s, exit))
-                .flatten()
-            {
+            if !cleared && let Some((from, to)) = self.unproven_piece(index, &ray, s, exit) {
                 return ClearRun {
                     clear: f32_at_most(from),
                     retry_after: (to - from) as f32,
