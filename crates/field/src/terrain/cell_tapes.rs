@@ -19,11 +19,12 @@ use std::hash::{Hash, Hasher};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use glam::{DVec2, Vec2};
+use glam::Vec2;
 
 use crate::tape::{Outputs, Program, Tape};
 use crate::terrain::grid::Grid;
 use crate::terrain::limits::MAX_CELL_TAPE_BYTES;
+use crate::terrain::square_walk::Lattice;
 
 /// The tapes of one region.
 ///
@@ -313,11 +314,6 @@ const HALO_TILE_CELLS: u32 = 8;
 /// past the grid's edge, farther than a ray cast from inside a level usually goes.
 const HALO_DEPTH: u32 = 16;
 
-/// Most halo tiles one [`CellTapes::proven_tiles`] walks: a run costs a few tiles' checks
-/// however far the sky goes (the halo is 16 tiles deep), and a ray longer than four tiles
-/// (2,048 units with 64-unit cells) asks again.
-const TILES_PER_RUN: u32 = 4;
-
 /// Coarse tiles around the grid for points outside it, where no event reaches: the base
 /// specialized to a tile makes a query there as cheap as in a cell, and a tile where the
 /// base is clamped needs no evaluation at all. Points past the halo use the whole program.
@@ -448,47 +444,31 @@ impl CellTapes {
         }
     }
 
-    /// How far the ray `p + d t` (`p` outside the grid, `t` up to `limit`) runs through
-    /// halo tiles whose base is bounded at or above `above` over the whole tile: from
-    /// `p`'s tile through each next tile the ray enters, to the far side of the last such
-    /// tile (or `limit`), at most [`TILES_PER_RUN`] tiles. `None` where `p`'s own tile
-    /// proves nothing, or `p` is past the halo. Neighbouring tiles share their sides (both
-    /// computed as [`Halo::tile_of`] computes them), so the tiles walked cover the ray up
-    /// to the distance returned.
-    pub(super) fn proven_tiles(&self, p: Vec2, d: DVec2, above: f32, limit: f64) -> Option<f64> {
-        let (first, _) = self.halo.tile_of(p).filter(|_| self.specialize)?;
+    /// The halo's tiles as a lattice, and the tile holding `p` as `(column, row)`;
+    /// `None` past the halo, or where cells are not specialized (every tile is then the
+    /// whole program, which proves nothing a tile could).
+    #[inline]
+    pub(super) fn halo_tile_of(&self, p: Vec2) -> Option<(Lattice, (u32, u32))> {
         let halo = &self.halo;
-        let (mut ix, mut iy) = (first as u32 % halo.nx, first as u32 / halo.nx);
-        let p = p.as_dvec2();
-        let mut run = None;
-        for _ in 0..TILES_PER_RUN {
-            let (i, min) = halo.tile_at(ix, iy);
-            let plan =
-                self.halo.tiles[i].get_or_init(|| self.specialized(min, halo.tile, Reach::Full));
-            // NaN compares false: an unbounded tile proves nothing.
-            let proven = plan.range.0 >= above;
-            if !proven {
-                return run;
-            }
-            let (min, max) = (min.as_dvec2(), (min + Vec2::splat(halo.tile)).as_dvec2());
-            let exit_x = axis_exit(p.x, d.x, min.x, max.x);
-            let exit_y = axis_exit(p.y, d.y, min.y, max.y);
-            let exit = exit_x.min(exit_y).max(run.unwrap_or(0.0));
-            run = Some(exit);
-            if exit >= limit {
-                return Some(limit);
-            }
-            let next = if exit_x <= exit_y {
-                step(ix, d.x, halo.nx).map(|ix| (ix, iy))
-            } else {
-                step(iy, d.y, halo.ny).map(|iy| (ix, iy))
-            };
-            let Some(next) = next else {
-                return run;
-            };
-            (ix, iy) = next;
-        }
-        run
+        let (i, _) = halo.tile_of(p).filter(|_| self.specialize)?;
+        let lattice = Lattice {
+            origin: halo.origin,
+            size: halo.tile,
+            nx: halo.nx,
+            ny: halo.ny,
+        };
+        Some((lattice, (i as u32 % halo.nx, i as u32 / halo.nx)))
+    }
+
+    /// Whether the base is bounded at or above `above` over the whole of halo tile
+    /// `(ix, iy)` (inside the halo).
+    #[inline]
+    pub(super) fn halo_tile_proven(&self, ix: u32, iy: u32, above: f32) -> bool {
+        let halo = &self.halo;
+        let (i, min) = halo.tile_at(ix, iy);
+        let plan = halo.tiles[i].get_or_init(|| self.specialized(min, halo.tile, Reach::Full));
+        // NaN compares false: an unbounded tile proves nothing.
+        plan.range.0 >= above
     }
 
     /// The program specialized to the square of side `size` at `min` (shared with any
@@ -504,28 +484,5 @@ impl CellTapes {
             return whole.clone();
         }
         self.interned.share(tape).unwrap_or_else(|| whole.clone())
-    }
-}
-
-/// Distance along one axis's direction `d` from `p` to the side of `[lo, hi]` it moves
-/// towards (infinite when it does not move).
-fn axis_exit(p: f64, d: f64, lo: f64, hi: f64) -> f64 {
-    if d > 0.0 {
-        (hi - p) / d
-    } else if d < 0.0 {
-        (lo - p) / d
-    } else {
-        f64::INFINITY
-    }
-}
-
-/// The next of `count` columns (or rows) from `i` along direction `d`; `None` past the end.
-fn step(i: u32, d: f64, count: u32) -> Option<u32> {
-    if d > 0.0 {
-        (i + 1 < count).then_some(i + 1)
-    } else if d < 0.0 {
-        i.checked_sub(1)
-    } else {
-        None
     }
 }

@@ -94,6 +94,7 @@ mod options;
 mod proof;
 mod ray;
 mod rollback;
+mod square_walk;
 mod state;
 
 use std::collections::BTreeSet;

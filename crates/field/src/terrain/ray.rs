@@ -20,7 +20,9 @@ use glam::{DVec2, Vec2};
 
 use super::Terrain;
 use super::brick_walk::{BrickRun, WalkRay, walk};
+use super::cell_tapes::CellTapes;
 use super::grid::{Brick, CellState, FloorGrid};
+use super::square_walk::{Lattice, SquareWalk};
 use crate::sdf::{ClearRun, Sdf};
 
 /// The rounding allowance of the ray's points, on each side of a cell's piece of the ray:
@@ -68,14 +70,18 @@ impl<F: Sdf> Terrain<F> {
             above,
             walk: WalkRay::new(d64, above, slack, l, band),
         };
-        let mut x = Axis::new(cell as u32 % nx, nx, self.grid.origin().x, p64.x, d64.x);
-        let mut y = Axis::new(cell as u32 / nx, ny, self.grid.origin().y, p64.y, d64.y);
-        let size = self.grid.cell_size();
+        let lattice = Lattice {
+            origin: self.grid.origin(),
+            size: self.grid.cell_size(),
+            nx,
+            ny,
+        };
+        let mut walk = SquareWalk::new(lattice, (cell as u32 % nx, cell as u32 / nx), p64, d64);
         let mut s = 0.0f64;
         loop {
-            let index = y.i as usize * nx as usize + x.i as usize;
-            let (exit_x, exit_y) = (x.exit(size), y.exit(size));
-            let exit = exit_x.min(exit_y).max(s);
+            let (ix, iy) = walk.square();
+            let index = iy as usize * nx as usize + ix as usize;
+            let exit = walk.exit().max(s);
             let cleared = self.cell_low(index) >= above;
             if !cleared && let Some((from, to)) = self.unproven_piece(index, &ray, s, exit) {
                 return ClearRun {
@@ -84,8 +90,7 @@ impl<F: Sdf> Terrain<F> {
                 };
             }
             s = exit;
-            let inside = if exit_x <= exit_y { x.step() } else { y.step() };
-            if !inside || !s.is_finite() {
+            if !walk.step() || !s.is_finite() {
                 // Left the grid: the base alone from here, asked at the next point.
                 return ClearRun {
                     clear: f32_at_most(s),
@@ -235,7 +240,7 @@ impl<F: Sdf> Terrain<F> {
         let tiles = self
             .cell_tapes
             .as_ref()
-            .and_then(|t| t.proven_tiles(p, d64, above, entry.unwrap_or(f64::INFINITY)));
+            .and_then(|tapes| proven_tiles(tapes, p, d64, above, entry.unwrap_or(f64::INFINITY)));
         let clear = match tiles {
             // Back by the slack: the caller's next point lands inside the last tile's
             // rectangle, or in the next tile, which answers for itself.
@@ -288,49 +293,37 @@ impl<F: Sdf> Terrain<F> {
     }
 }
 
-/// One axis of the walk through the grid's cells: the column (or row) the ray is in, and
-/// where along the ray it leaves it.
-struct Axis {
-    i: u32,
-    count: u32,
-    origin: f32,
-    p: f64,
-    /// `1 / d`; the ray never leaves through this axis's sides when `d` is zero.
-    inverse: f64,
-    forward: bool,
-}
+/// Most halo tiles one [`proven_tiles`] walks: a run costs a few tiles' checks however
+/// far the sky goes (the halo is 16 tiles deep), and a ray longer than four tiles (2,048
+/// units with 64-unit cells) asks again.
+const TILES_PER_RUN: u32 = 4;
 
-impl Axis {
-    fn new(i: u32, count: u32, origin: f32, p: f64, d: f64) -> Axis {
-        Axis {
-            i,
-            count,
-            origin,
-            p,
-            inverse: if d == 0.0 { 0.0 } else { 1.0 / d },
-            forward: d > 0.0,
+/// How far the ray `p + d t` (`p` outside the grid, `t` up to `limit`) runs through halo
+/// tiles whose base is bounded at or above `above` over the whole tile: from `p`'s tile
+/// through each next tile the ray enters, to the far side of the last such tile (or
+/// `limit`), at most [`TILES_PER_RUN`] tiles. `None` where `p`'s own tile proves nothing,
+/// or `p` is past the halo. The walk puts the tiles' sides where the halo's lookup does
+/// (up to the rounding the caller's slack covers), so the tiles walked cover the ray up
+/// to the distance returned.
+fn proven_tiles(tapes: &CellTapes, p: Vec2, d: DVec2, above: f32, limit: f64) -> Option<f64> {
+    let (lattice, first) = tapes.halo_tile_of(p)?;
+    let mut walk = SquareWalk::new(lattice, first, p.as_dvec2(), d);
+    let mut run = None;
+    for _ in 0..TILES_PER_RUN {
+        let (ix, iy) = walk.square();
+        if !tapes.halo_tile_proven(ix, iy, above) {
+            return run;
+        }
+        let exit = walk.exit().max(run.unwrap_or(0.0));
+        run = Some(exit);
+        if exit >= limit {
+            return Some(limit);
+        }
+        if !walk.step() {
+            return run;
         }
     }
-
-    /// Distance along the ray to the far side of column `i`, whose sides are where the
-    /// cell lookup puts them, in `f32` (infinite where the ray runs along the axis).
-    fn exit(&self, size: f32) -> f64 {
-        if self.inverse == 0.0 {
-            return f64::INFINITY;
-        }
-        let side = self.i + u32::from(self.forward);
-        (f64::from(self.origin + side as f32 * size) - self.p) * self.inverse
-    }
-
-    /// Moves to the next column the ray enters; `false` past the grid's edge.
-    fn step(&mut self) -> bool {
-        match self.forward {
-            true if self.i + 1 < self.count => self.i += 1,
-            false if self.inverse != 0.0 && self.i > 0 => self.i -= 1,
-            _ => return false,
-        }
-        true
-    }
+    run
 }
 
 /// A ray's line (`p + d t`, in `f64`), the rounding allowance of its points and the
