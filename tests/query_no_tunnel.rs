@@ -639,6 +639,47 @@ fn clear_runs_of_a_cratered_terrain_hold() {
     clear_runs_hold(&cratered_terrain_with(3, 30, 0));
 }
 
+/// Clear runs from points outside the grid, where the base's halo tiles prove the sky a
+/// tile at a time and the walk crosses up to four of them: dense sampling along every run
+/// finds the field at or above the threshold (the ground runs on past the level on both
+/// sides, so many rays reach it), and many runs cross more than one tile.
+#[test]
+fn clear_runs_through_the_halo_hold() {
+    let terrain = cratered_terrain_with(2, 400, 0);
+    let grid = terrain.grid();
+    let mut next = uniform_stream(0x4a10_7115);
+    let (mut runs, mut past_a_tile) = (0usize, 0usize);
+    for k in 0..800 {
+        // Left or right of the grid (which reaches 609 units past the level) and within
+        // the halo (8,192 units past the grid), around the ground's height.
+        let x = 700.0 + next() * 8200.0;
+        let x = if k % 2 == 0 { -x } else { 1024.0 + x };
+        let p = Vec2::new(x, -1500.0 + next() * 4000.0);
+        assert!(grid.cell_index(p).is_none(), "{p} is outside the grid");
+        let dir = Vec2::from_angle(next() * std::f32::consts::TAU);
+        let above = [1e-3, 0.5, 4.0, 31.0][k % 4];
+        let run = terrain.clear_run(p, dir, above);
+        assert!(run.clear >= 0.0 && run.retry_after >= 0.0, "{run:?}");
+        runs += usize::from(run.clear > 0.0);
+        past_a_tile += usize::from(run.clear > 512.0);
+        let mut s = 0.0f32;
+        while run.clear > 0.0 && s <= run.clear {
+            let d = terrain.distance(p + dir * s);
+            // The rounding of `p + dir * s` moves the point by less than 1e-2 units here.
+            assert!(
+                d >= above - 1e-2,
+                "run {run:?} from {p} along {dir} above {above}: the field is {d} at s = {s}"
+            );
+            s += 0.5;
+        }
+    }
+    assert!(runs > 400, "only {runs} of 800 runs proved anything");
+    assert!(
+        past_a_tile > 100,
+        "only {past_a_tile} runs reached past one tile's side"
+    );
+}
+
 /// [`clear_runs_of_a_cratered_terrain_hold`] on one terrain.
 fn clear_runs_hold(terrain: &craterfield::field2d::Terrain<craterfield::field2d::Graph>) {
     let mut next = uniform_stream(0x0c1e_a125);
