@@ -352,14 +352,23 @@ impl Halo {
         (iy as usize * self.nx as usize + ix as usize, min)
     }
 
-    /// The tile holding `p` and its lower-left corner, if the halo reaches `p`.
-    fn tile_of(&self, p: Vec2) -> Option<(usize, Vec2)> {
+    /// The tile holding `p` as `(column, row)`, if the halo reaches `p`.
+    fn tile_of(&self, p: Vec2) -> Option<(u32, u32)> {
         let f = (p - self.origin) / self.tile;
         if !(f.x >= 0.0 && f.x < self.nx as f32 && f.y >= 0.0 && f.y < self.ny as f32) {
             return None;
         }
-        let (ix, iy) = ((f.x as u32).min(self.nx - 1), (f.y as u32).min(self.ny - 1));
-        Some(self.tile_at(ix, iy))
+        Some(((f.x as u32).min(self.nx - 1), (f.y as u32).min(self.ny - 1)))
+    }
+
+    /// The halo's tiles as a lattice of squares.
+    fn lattice(&self) -> Lattice {
+        Lattice {
+            origin: self.origin,
+            size: self.tile,
+            nx: self.nx,
+            ny: self.ny,
+        }
     }
 }
 
@@ -430,17 +439,12 @@ impl CellTapes {
         }
     }
 
-    /// The plan for `p` outside the grid: its halo tile's, with the tile's rectangle, or
-    /// the whole program's past the halo.
-    pub(super) fn outside(&self, p: Vec2) -> (&CellTape, Option<(Vec2, Vec2)>) {
+    /// The plan for `p` outside the grid: its halo tile's, or the whole program's past the
+    /// halo.
+    pub(super) fn outside(&self, p: Vec2) -> &CellTape {
         match self.halo.tile_of(p) {
-            Some((i, min)) if self.specialize => {
-                let size = self.halo.tile;
-                let plan =
-                    self.halo.tiles[i].get_or_init(|| self.specialized(min, size, Reach::Full));
-                (plan, Some((min, min + Vec2::splat(size))))
-            }
-            _ => (self.whole(), None),
+            Some((ix, iy)) if self.specialize => self.halo_tile(ix, iy),
+            _ => self.whole(),
         }
     }
 
@@ -449,26 +453,24 @@ impl CellTapes {
     /// whole program, which proves nothing a tile could).
     #[inline]
     pub(super) fn halo_tile_of(&self, p: Vec2) -> Option<(Lattice, (u32, u32))> {
-        let halo = &self.halo;
-        let (i, _) = halo.tile_of(p).filter(|_| self.specialize)?;
-        let lattice = Lattice {
-            origin: halo.origin,
-            size: halo.tile,
-            nx: halo.nx,
-            ny: halo.ny,
-        };
-        Some((lattice, (i as u32 % halo.nx, i as u32 / halo.nx)))
+        let tile = self.halo.tile_of(p).filter(|_| self.specialize)?;
+        Some((self.halo.lattice(), tile))
     }
 
     /// Whether the base is bounded at or above `above` over the whole of halo tile
     /// `(ix, iy)` (inside the halo).
     #[inline]
     pub(super) fn halo_tile_proven(&self, ix: u32, iy: u32, above: f32) -> bool {
+        // NaN compares false: an unbounded tile proves nothing.
+        self.halo_tile(ix, iy).range.0 >= above
+    }
+
+    /// Halo tile `(ix, iy)`'s plan (inside the halo), specialized on its first use.
+    #[inline]
+    fn halo_tile(&self, ix: u32, iy: u32) -> &CellTape {
         let halo = &self.halo;
         let (i, min) = halo.tile_at(ix, iy);
-        let plan = halo.tiles[i].get_or_init(|| self.specialized(min, halo.tile, Reach::Full));
-        // NaN compares false: an unbounded tile proves nothing.
-        plan.range.0 >= above
+        halo.tiles[i].get_or_init(|| self.specialized(min, halo.tile, Reach::Full))
     }
 
     /// The program specialized to the square of side `size` at `min` (shared with any

@@ -76,7 +76,7 @@ impl<F: Sdf> Terrain<F> {
     fn plan<'a>(&self, cell_tapes: &'a CellTapes, cell: Option<usize>, p: Vec2) -> &'a CellTape {
         match cell {
             Some(_) => cell_tapes.get(&self.grid, cell),
-            None => cell_tapes.outside(p).0,
+            None => cell_tapes.outside(p),
         }
     }
 
