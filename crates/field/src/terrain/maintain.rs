@@ -6,7 +6,7 @@
 
 use std::ops::Range;
 
-use super::grid::{self, Brick, CellState, MaterialSource};
+use super::grid::{self, Brick, CellState, Listed, MaterialSource};
 use super::{Terrain, TerrainError, take_revision};
 use crate::event::{Event, EventKind};
 use crate::sdf::Sdf;
@@ -25,16 +25,41 @@ fn center_dist(a: &Event, b: &Event) -> f64 {
 /// the distance by a guard of at least 1/32 unit, far past `f64` rounding), so it skips the
 /// square root and the guards of most pairs without changing a decision.
 fn may_nest(a: &Event, b: &Event) -> bool {
+    // Each leg of the centres' offset is at most its length: most pairs of a list fail on
+    // a leg, without the 128-bit squares (the differences reach 2^33).
+    if !legs_within(a, b) {
+        return false;
+    }
+    let (dx, dy, dr) = legs(a, b);
+    let (dx, dy, dr) = (u128::from(dx), u128::from(dy), u128::from(dr));
+    dx * dx + dy * dy <= dr * dr
+}
+
+/// The legs of the offset between two discs' centres and the difference of their radii,
+/// fixed point, exact.
+#[inline]
+fn legs(a: &Event, b: &Event) -> (u64, u64, u64) {
     let dx = (i64::from(a.center[0]) - i64::from(b.center[0])).unsigned_abs();
     let dy = (i64::from(a.center[1]) - i64::from(b.center[1])).unsigned_abs();
     let dr = (i64::from(a.radius) - i64::from(b.radius)).unsigned_abs();
-    // Each leg of the centres' offset is at most its length: most pairs of a list fail on
-    // a leg, without the 128-bit squares (the differences reach 2^33).
-    if dx > dr || dy > dr {
-        return false;
-    }
-    let (dx, dy, dr) = (u128::from(dx), u128::from(dy), u128::from(dr));
-    dx * dx + dy * dy <= dr * dr
+    (dx, dy, dr)
+}
+
+/// Whether neither leg of the centres' offset exceeds the radii's difference (which
+/// [`may_nest`] needs): one comparison of the longer leg (the shorter leg's comparison
+/// was a branch that went either way).
+#[inline]
+fn legs_within(a: &Event, b: &Event) -> bool {
+    let (dx, dy, dr) = legs(a, b);
+    dx.max(dy) <= dr
+}
+
+/// The last of `list` that [`may_nest`] with `e`. A separate loop with nothing else in
+/// it: the scan over a cell's whole list is most of an insert's pruning, and inside the
+/// pruning's body it kept `e`'s fields on the stack.
+#[inline(never)]
+fn last_nesting(list: &[Listed], e: &Event) -> Option<usize> {
+    list.iter().rposition(|x| may_nest(x, e))
 }
 
 fn fixed_f64(v: i32) -> f64 {
@@ -180,19 +205,29 @@ impl<F: Sdf> Terrain<F> {
             return;
         }
         let list = c.events.listed();
+        let earlier = list.len().saturating_sub(1);
+        // A list of settled sharp carves alone, which a sharp carve joins, is one run
+        // throughout, and every event in it is settled: only the nesting test is left.
+        let run_start = if e.kind == EventKind::Carve && c.folds_carves(self.tick) {
+            0
+        } else {
+            let in_run = |x: &Listed| {
+                x.kind == e.kind
+                    && x.is_sharp()
+                    && (e.kind == EventKind::Carve || x.material == e.material)
+            };
+            list[..earlier]
+                .iter()
+                .rposition(|x| !in_run(x))
+                .map_or(0, |p| p + 1)
+        };
         let mut drop_new = false;
         let mut drop: Vec<usize> = Vec::new();
-        for pos in (0..list.len().saturating_sub(1)).rev() {
-            let Some(x) = list.get(pos) else {
-                break;
-            };
-            let same_run = x.kind == e.kind
-                && x.is_sharp()
-                && (e.kind == EventKind::Carve || x.material == e.material);
-            if !same_run {
-                break;
-            }
-            if !x.is_settled(self.tick) || !may_nest(x, e) {
+        let mut end = earlier;
+        while let Some(pos) = last_nesting(&list[run_start..end], e).map(|p| run_start + p) {
+            end = pos;
+            let x = &list[pos];
+            if !x.is_settled(self.tick) {
                 continue;
             }
             let dist = center_dist(x, e);
@@ -312,8 +347,98 @@ impl<F: Sdf> Terrain<F> {
 mod tests {
     use glam::Vec2;
 
+    use super::last_nesting;
     use crate::terrain::Terrain;
-    use crate::{Event, Graph, Level};
+    use crate::terrain::grid::EventList;
+    use crate::{Event, EventKind, Graph, Level};
+    use craterfield_core::det::quant::FIXED_MAX;
+
+    /// The scan for the pruning's candidates finds, in every prefix of a list, the last
+    /// event whose disc and the new one's can nest (centres no farther apart than the radii
+    /// differ, exactly): on lists of neighbours, on discs that touch from inside at the
+    /// fixed point's extremes, and with legs equal to the radii's difference.
+    #[test]
+    fn the_scan_finds_the_last_pair_that_can_nest() {
+        let mut state = 0x5ca7u64;
+        let mut next = move |n: i64| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((state >> 33) as i64).rem_euclid(n)
+        };
+        let event = |x: i64, y: i64, r: i64| Event {
+            kind: EventKind::Carve,
+            center: [x as i32, y as i32],
+            radius: r as i32,
+            rim: 0,
+            grow_ticks: 0,
+            tick: 0,
+            material: 0,
+        };
+        let reference = |list: &[Event], e: &Event| {
+            list.iter().rposition(|x| {
+                let d = |a: i32, b: i32| i128::from(a) - i128::from(b);
+                let (dx, dy) = (d(x.center[0], e.center[0]), d(x.center[1], e.center[1]));
+                let dr = d(x.radius, e.radius);
+                dx * dx + dy * dy <= dr * dr
+            })
+        };
+        let max = i64::from(FIXED_MAX);
+        let (mut found, mut checked) = (0, 0);
+        for round in 0..400 {
+            // Near discs of a cell's neighbourhood, or anywhere in the fixed point's range.
+            let (spread, origin) = if round % 4 == 3 {
+                (max, -max / 2)
+            } else {
+                (40_000, 0)
+            };
+            let e = event(
+                origin + next(spread),
+                origin + next(spread),
+                1 + next(20_000),
+            );
+            let log: Vec<Event> = (0..1 + next(60))
+                .map(|_| match next(4) {
+                    // Inside `e` or around it, the legs up to the radii's difference.
+                    0 => {
+                        let r = 1 + next(40_000);
+                        let dr = (r - i64::from(e.radius)).abs();
+                        let (dx, dy) = (next(dr + 2) - dr / 2, next(dr + 2) - dr / 2);
+                        let x = (i64::from(e.center[0]) + dx).clamp(-max, max);
+                        let y = (i64::from(e.center[1]) + dy).clamp(-max, max);
+                        event(x, y, r)
+                    }
+                    // Touching from inside along an axis: a leg equal to the difference.
+                    1 => {
+                        let dr = next(10_000);
+                        let x = (i64::from(e.center[0]) + dr).min(max);
+                        event(x, i64::from(e.center[1]), i64::from(e.radius) + dr)
+                    }
+                    _ => event(
+                        origin + next(spread),
+                        origin + next(spread),
+                        1 + next(20_000),
+                    ),
+                })
+                .collect();
+            let indices: Vec<u32> = (0..log.len() as u32).collect();
+            let list = EventList::from_log(&indices, &log).unwrap();
+            for end in 0..=log.len() {
+                let want = reference(&log[..end], &e);
+                assert_eq!(
+                    last_nesting(&list.listed()[..end], &e),
+                    want,
+                    "round {round} end {end}"
+                );
+                found += usize::from(want.is_some());
+                checked += 1;
+            }
+        }
+        assert!(
+            found > checked / 4,
+            "{found} of {checked} prefixes hold a pair that can nest"
+        );
+    }
 
     /// Every list, of every cell and of every journaled pre-image, holds copies equal to
     /// the log's events at its indices.
