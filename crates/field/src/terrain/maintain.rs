@@ -25,33 +25,17 @@ fn center_dist(a: &Event, b: &Event) -> f64 {
 /// the distance by a guard of at least 1/32 unit, far past `f64` rounding), so it skips the
 /// square root and the guards of most pairs without changing a decision.
 fn may_nest(a: &Event, b: &Event) -> bool {
-    // Each leg of the centres' offset is at most its length: most pairs of a list fail on
-    // a leg, without the 128-bit squares (the differences reach 2^33).
-    if !legs_within(a, b) {
-        return false;
-    }
-    let (dx, dy, dr) = legs(a, b);
-    let (dx, dy, dr) = (u128::from(dx), u128::from(dy), u128::from(dr));
-    dx * dx + dy * dy <= dr * dr
-}
-
-/// The legs of the offset between two discs' centres and the difference of their radii,
-/// fixed point, exact.
-#[inline]
-fn legs(a: &Event, b: &Event) -> (u64, u64, u64) {
     let dx = (i64::from(a.center[0]) - i64::from(b.center[0])).unsigned_abs();
     let dy = (i64::from(a.center[1]) - i64::from(b.center[1])).unsigned_abs();
     let dr = (i64::from(a.radius) - i64::from(b.radius)).unsigned_abs();
-    (dx, dy, dr)
-}
-
-/// Whether neither leg of the centres' offset exceeds the radii's difference (which
-/// [`may_nest`] needs): one comparison of the longer leg (the shorter leg's comparison
-/// was a branch that went either way).
-#[inline]
-fn legs_within(a: &Event, b: &Event) -> bool {
-    let (dx, dy, dr) = legs(a, b);
-    dx.max(dy) <= dr
+    // Each leg of the centres' offset is at most its length: most pairs of a list fail on
+    // a leg, without the 128-bit squares (the differences reach 2^33). One comparison of
+    // the longer leg: the shorter one's was a branch that went either way.
+    if dx.max(dy) > dr {
+        return false;
+    }
+    let (dx, dy, dr) = (u128::from(dx), u128::from(dy), u128::from(dr));
+    dx * dx + dy * dy <= dr * dr
 }
 
 /// The last of `list` that [`may_nest`] with `e`. A separate loop with nothing else in
