@@ -343,13 +343,8 @@ mod tests {
     /// fixed point's extremes, and with legs equal to the radii's difference.
     #[test]
     fn the_scan_finds_the_last_pair_that_can_nest() {
-        let mut state = 0x5ca7u64;
-        let mut next = move |n: i64| {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((state >> 33) as i64).rem_euclid(n)
-        };
+        let mut unit = crate::test_rng::unit_f64(0x5ca7);
+        let mut next = move |n: i64| (unit() * n as f64) as i64;
         let event = |x: i64, y: i64, r: i64| Event {
             kind: EventKind::Carve,
             center: [x as i32, y as i32],

@@ -130,13 +130,7 @@ mod tests {
             (f.x >= 0.0 && f.y >= 0.0 && f.x < 9.0 && f.y < 7.0)
                 .then(|| (f.x.floor() as u32, f.y.floor() as u32))
         };
-        let mut seed = 7u64;
-        let mut unit = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut unit = crate::test_rng::unit_f64(7);
         for _ in 0..200 {
             let p = DVec2::new(-40.0 + 144.0 * unit(), 8.0 + 112.0 * unit());
             let angle = std::f64::consts::TAU * unit();
