@@ -983,19 +983,37 @@ fn brick<L: Lanes, V: Val<L>, F: Sdf>(
     l.store_i(i, &mut ii);
     l.store_i(j, &mut jj);
     let row = (n + 1) as usize;
-    let val = |i: i32, j: i32| {
-        b.values
-            .get(j as usize * row + i as usize)
-            .copied()
-            .unwrap_or(0.0)
+    // A bake's registers mostly hold a run of one lattice row (three in four of a
+    // 33-sample row's): the corners are then two runs of two brick rows, read whole
+    // (the same samples the lanes would read one by one).
+    let runs = lattice_run::<L>(&ii, &jj, row).and_then(|at| {
+        let low = b.values.get(at..at + L::WIDTH + 1)?;
+        let high = b.values.get(at + row..at + row + L::WIDTH + 1)?;
+        Some((low, high))
+    });
+    let (v00, v10, v01, v11) = match runs {
+        Some((low, high)) => (
+            l.load(low),
+            l.load(&low[1..]),
+            l.load(high),
+            l.load(&high[1..]),
+        ),
+        None => {
+            let val = |i: i32, j: i32| {
+                b.values
+                    .get(j as usize * row + i as usize)
+                    .copied()
+                    .unwrap_or(0.0)
+            };
+            let (mut v00, mut v10, mut v01, mut v11) = ([0.0; 16], [0.0; 16], [0.0; 16], [0.0; 16]);
+            for k in 0..L::WIDTH {
+                let (i, j) = (ii[k], jj[k]);
+                (v00[k], v10[k], v01[k], v11[k]) =
+                    (val(i, j), val(i + 1, j), val(i, j + 1), val(i + 1, j + 1));
+            }
+            (l.load(&v00), l.load(&v10), l.load(&v01), l.load(&v11))
+        }
     };
-    let (mut v00, mut v10, mut v01, mut v11) = ([0.0; 16], [0.0; 16], [0.0; 16], [0.0; 16]);
-    for k in 0..L::WIDTH {
-        let (i, j) = (ii[k], jj[k]);
-        (v00[k], v10[k], v01[k], v11[k]) =
-            (val(i, j), val(i + 1, j), val(i, j + 1), val(i + 1, j + 1));
-    }
-    let (v00, v10, v01, v11) = (l.load(&v00), l.load(&v10), l.load(&v01), l.load(&v11));
     let bottom = fu.scale_v(l, l.sub(v10, v00)).offset_v(l, v00);
     let top = fu.scale_v(l, l.sub(v11, v01)).offset_v(l, v01);
     let d = top.sub(l, bottom).mul(l, fv).add(l, bottom);
@@ -1009,11 +1027,30 @@ fn brick<L: Lanes, V: Val<L>, F: Sdf>(
     l.store_i(mi, &mut ii);
     l.store_i(mj, &mut jj);
     let mut mats = [0i32; 16];
-    for k in 0..L::WIDTH {
-        let at = jj[k] as usize * row + ii[k] as usize;
-        mats[k] = i32::from(b.materials.get(at).copied().unwrap_or(0));
+    match lattice_run::<L>(&ii, &jj, row).and_then(|at| b.materials.get(at..at + L::WIDTH)) {
+        Some(run) => {
+            for (m, &s) in mats.iter_mut().zip(run) {
+                *m = i32::from(s);
+            }
+        }
+        None => {
+            for k in 0..L::WIDTH {
+                let at = jj[k] as usize * row + ii[k] as usize;
+                mats[k] = i32::from(b.materials.get(at).copied().unwrap_or(0));
+            }
+        }
     }
     (d, l.load_i(&mats))
+}
+
+/// Where the lanes' lattice indices `(ii, jj)` are consecutive columns of one row (a
+/// register of a bake's lattice points not split across rows), the index of the first
+/// lane's sample in a brick of rows `row` long.
+#[inline(always)]
+fn lattice_run<L: Lanes>(ii: &[i32; 16], jj: &[i32; 16], row: usize) -> Option<usize> {
+    let (i0, j0) = (ii[0], jj[0]);
+    let run = (1..L::WIDTH).all(|k| ii[k] == i0 + k as i32 && jj[k] == j0);
+    (run && i0 >= 0 && j0 >= 0).then(|| j0 as usize * row + i0 as usize)
 }
 
 #[cfg(test)]
