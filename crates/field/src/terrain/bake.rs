@@ -65,13 +65,21 @@ impl<F: Sdf> Terrain<F> {
                     },
                 });
             }
-            let Some(bake) = &self.baking else { break };
+            let Some(mut bake) = self.baking.take() else {
+                break;
+            };
             let (cell, prefix) = (bake.cell, bake.prefix);
             let done = bake.rows.values.len() / side;
             let take = budget.min(side - done);
             budget -= take;
-            let rows = self.bake_rows(cell, prefix, done as u32..(done + take) as u32);
-            self.append_rows(rows);
+            self.grid.record_bake_rows(bake.rows.values.len());
+            self.bake_rows_onto(
+                cell,
+                prefix,
+                done as u32..(done + take) as u32,
+                &mut bake.rows,
+            );
+            self.baking = Some(bake);
             if done + take == side {
                 self.finish_bake();
                 // A bake carried over from an earlier advance may be past cells that
@@ -81,14 +89,6 @@ impl<F: Sdf> Terrain<F> {
                 }
             }
         }
-    }
-
-    /// Appends baked rows to the partial bake.
-    fn append_rows(&mut self, rows: Brick) {
-        let Some(bake) = &mut self.baking else { return };
-        self.grid.record_bake_rows(bake.rows.values.len());
-        bake.rows.values.extend_from_slice(&rows.values);
-        bake.rows.materials.extend_from_slice(&rows.materials);
     }
 
     /// Installs the completed partial bake as its cell's brick.

@@ -247,25 +247,30 @@ impl<F: Sdf> Terrain<F> {
     /// at those rows of the `(n+1) x (n+1)` lattice, on the SIMD lanes where the base has
     /// tapes (the same bits as the point path, which does it otherwise).
     pub(super) fn bake_rows(&self, cell: usize, prefix: usize, rows: Range<u32>) -> Brick {
+        let mut brick = Brick::default();
+        self.bake_rows_onto(cell, prefix, rows, &mut brick);
+        brick
+    }
+
+    /// [`Terrain::bake_rows`] appended to `brick`'s samples (a partial bake's, which has
+    /// room for them: a tick's rows need no buffers of their own).
+    pub(super) fn bake_rows_onto(
+        &self,
+        cell: usize,
+        prefix: usize,
+        rows: Range<u32>,
+        brick: &mut Brick,
+    ) {
         let points = self.grid.lattice_rows(cell, rows);
-        let mut brick = Brick {
-            values: vec![0.0; points.len()],
-            materials: vec![0; points.len()],
-            ..Brick::default()
-        };
-        if !self.bake_lattice(
-            cell,
-            prefix,
-            &points,
-            &mut brick.values,
-            &mut brick.materials,
-        ) {
+        let start = brick.values.len();
+        brick.values.resize(start + points.len(), 0.0);
+        brick.materials.resize(start + points.len(), 0);
+        let (values, materials) = (&mut brick.values[start..], &mut brick.materials[start..]);
+        if !self.bake_lattice(cell, prefix, &points, values, materials) {
             for (k, &q) in points.iter().enumerate() {
-                (brick.values[k], brick.materials[k]) =
-                    self.eval_cell::<f32, true>(q, cell, prefix);
+                (values[k], materials[k]) = self.eval_cell::<f32, true>(q, cell, prefix);
             }
         }
-        brick
     }
 
     /// How many listed events of `cell`, from the first, have settled (what a bake may
