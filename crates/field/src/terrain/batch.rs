@@ -983,9 +983,9 @@ fn brick<L: Lanes, V: Val<L>, F: Sdf>(
     l.store_i(i, &mut ii);
     l.store_i(j, &mut jj);
     let row = (n + 1) as usize;
-    // A bake's registers mostly hold a run of one lattice row (three in four of a
-    // 33-sample row's): the corners are then two runs of two brick rows, read whole
-    // (the same samples the lanes would read one by one).
+    // A bake's registers mostly hold a run of one lattice row (on 8 lanes, three
+    // registers in four of a 33-sample row's): the corners are then two runs of two brick
+    // rows, read whole (the same samples the lanes would read one by one).
     let runs = lattice_run::<L>(&ii, &jj, row).and_then(|at| {
         let low = b.values.get(at..at + L::WIDTH + 1)?;
         let high = b.values.get(at + row..at + row + L::WIDTH + 1)?;
