@@ -22,7 +22,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use glam::Vec2;
 
 use crate::tape::{Outputs, Program, Tape};
-use crate::terrain::grid::Grid;
+use crate::terrain::grid::{FLAT_SIDE, Grid, square_bit};
 use crate::terrain::limits::MAX_CELL_TAPE_BYTES;
 use crate::terrain::square_walk::Lattice;
 
@@ -208,6 +208,24 @@ impl SubClamp {
             }
         }
         proof
+    }
+
+    /// The proven squares as those of the finer [`FLAT_SIDE`] split (`above`, `below`):
+    /// each of ours holds 2 x 2 of them, and its padded proof covers theirs.
+    pub(crate) fn flats(self) -> (u64, u64) {
+        const FINE: u32 = FLAT_SIDE / SUB_SQUARES;
+        let spread = |bits: u16| {
+            let mut out = 0u64;
+            for j in 0..FLAT_SIDE {
+                for i in 0..FLAT_SIDE {
+                    if bits & (1 << ((j / FINE) * SUB_SQUARES + i / FINE)) != 0 {
+                        out |= square_bit(i, j);
+                    }
+                }
+            }
+            out
+        };
+        (spread(self.above), spread(self.below))
     }
 
     /// How many squares are proven.

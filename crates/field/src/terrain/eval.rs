@@ -190,9 +190,14 @@ impl<F: Sdf> Terrain<F> {
             return self.eval::<Dual, true>(p);
         }
         // `eval` on duals, with the cell looked up once.
-        match self.grid.cell_index(p) {
-            Some(cell) => (self.sample_cell(p, cell))
-                .unwrap_or_else(|| self.eval_cell::<Dual, true>(p, cell, usize::MAX)),
+        match self.grid.cell_and_square(p) {
+            Some((cell, square)) => {
+                if let Some((d, Some(mat))) = self.flat_at(cell, square) {
+                    return (Dual::constant(d), mat);
+                }
+                (self.sample_cell(p, cell))
+                    .unwrap_or_else(|| self.eval_cell::<Dual, true>(p, cell, usize::MAX))
+            }
             None => self.base_clamped::<Dual, true>(p, None),
         }
     }
@@ -310,8 +315,17 @@ impl<F: Sdf> Terrain<F> {
         if p.x.is_nan() || p.y.is_nan() {
             return (N::constant(f32::NAN), 0);
         }
-        match self.grid.cell_index(p) {
-            Some(cell) => self.eval_cell::<N, MAT>(p, cell, usize::MAX),
+        match self.grid.cell_and_square(p) {
+            Some((cell, square)) => {
+                // A flat square answers the distance alone, and with the material where
+                // the cell's state has one.
+                match self.flat_at(cell, square) {
+                    Some((d, _)) if !(MAT || N::MATERIAL) => return (N::constant(d), 0),
+                    Some((d, Some(mat))) => return (N::constant(d), mat),
+                    _ => {}
+                }
+                self.eval_cell::<N, MAT>(p, cell, usize::MAX)
+            }
             None => self.base_clamped::<N, MAT>(p, None),
         }
     }
@@ -375,7 +389,7 @@ impl<F: Sdf> Sdf for Terrain<F> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use glam::Vec2;
 
     use super::Term;
@@ -385,16 +399,22 @@ mod tests {
     use craterfield_core::backend::Backend;
     use craterfield_core::det::math::Dual;
 
-    /// Random events on the default level: carves and fills, some wide enough to reset
-    /// cells, a tenth smooth, a tenth growing, with ticks advancing, lists short enough
-    /// to bake bricks.
-    fn cratered(seed: u64, smooth: bool) -> Terrain<Graph> {
+    /// The default level with lists short enough, and bricks coarse enough, that a few
+    /// hundred events bake many bricks.
+    pub(in crate::terrain) fn short_lists() -> Terrain<Graph> {
         let level = Level::default_level();
         let b = level.bounds();
         let mut o = level.terrain_options();
         o.cell_cap = 8;
         o.brick_resolution = 8;
-        let mut t = Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap();
+        Terrain::new(level.graph().clone(), b.min, b.max, o).unwrap()
+    }
+
+    /// Random events on the default level: carves and fills, some wide enough to reset
+    /// cells, a tenth smooth, a tenth growing, with ticks advancing, lists short enough
+    /// to bake bricks.
+    pub(in crate::terrain) fn cratered(seed: u64, smooth: bool) -> Terrain<Graph> {
+        let mut t = short_lists();
         let mut unit = crate::test_rng::unit_f64(seed);
         for k in 0..700u32 {
             let c = Vec2::new(
@@ -424,7 +444,7 @@ mod tests {
     }
 
     /// `n` points uniform in the rectangle at `min` of side lengths `size`.
-    fn random_points(
+    pub(in crate::terrain) fn random_points(
         unit: &mut impl FnMut() -> f64,
         n: usize,
         min: (f32, f32),

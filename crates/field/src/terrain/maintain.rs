@@ -46,12 +46,12 @@ fn last_nesting(list: &[Listed], e: &Event) -> Option<usize> {
     list.iter().rposition(|x| may_nest(x, e))
 }
 
-fn fixed_f64(v: i32) -> f64 {
+pub(super) fn fixed_f64(v: i32) -> f64 {
     f64::from(v) / f64::from(FIXED_ONE)
 }
 
 /// `|cx| + |cy| + r + k` of an event, world units (for guards).
-fn event_extent(e: &Event) -> f64 {
+pub(super) fn event_extent(e: &Event) -> f64 {
     fixed_f64(e.center[0]).abs()
         + fixed_f64(e.center[1]).abs()
         + fixed_f64(e.radius)

@@ -87,6 +87,7 @@ mod error;
 mod eval;
 mod event_log;
 mod field;
+mod flats;
 pub(crate) mod grid;
 mod limits;
 mod maintain;

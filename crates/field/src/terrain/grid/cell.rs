@@ -5,6 +5,7 @@ use std::sync::OnceLock;
 
 use serde::{Deserialize, Serialize};
 
+use super::flats::{Flats, brick_flats};
 use super::floors::BlockFloors;
 use crate::event::EventKind;
 use crate::sample::MaterialId;
@@ -127,12 +128,23 @@ pub(crate) struct Brick {
     pub(in crate::terrain) values: Vec<f32>,
     pub(in crate::terrain) materials: Vec<MaterialId>,
     pub(in crate::terrain) floors: OnceLock<BlockFloors>,
+    /// The squares where every sample a point of them interpolates is the band's top or
+    /// bottom, and the one material of all samples if there is one; computed when a query
+    /// first asks, like the floors.
+    pub(in crate::terrain) flats: OnceLock<Flats>,
 }
 
 impl Brick {
     /// The floors of the brick's blocks (`n` its resolution).
     pub(in crate::terrain) fn floors(&self, n: u32) -> &BlockFloors {
         self.floors.get_or_init(|| BlockFloors::of(&self.values, n))
+    }
+
+    /// The brick's flat squares (`n` its resolution, `band` the terrain's).
+    pub(in crate::terrain) fn flats(&self, n: u32, band: f32) -> Flats {
+        *self
+            .flats
+            .get_or_init(|| brick_flats(&self.values, &self.materials, n, band))
     }
 }
 

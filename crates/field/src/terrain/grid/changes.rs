@@ -12,9 +12,18 @@
 //! same change without recording again (checked in debug builds).
 
 use super::journal::{Entry, Journal, RollbackError, TerrainMark};
-use super::{Brick, Cell, CellLows, CellState, CellStateSlot, Grid, GridStats, PartialBake};
+use super::{
+    Brick, Cell, CellFlats, CellLows, CellState, CellStateSlot, Grid, GridStats, PartialBake,
+};
 
 impl Grid {
+    /// Forgets what the grid keeps derived from cell `cell` (its ray bound and flat
+    /// squares): the cell is about to change.
+    fn forget_bounds(&mut self, cell: usize) {
+        self.lows.forget(cell);
+        self.flats.forget(cell);
+    }
+
     /// Starts keeping the undo journal (nothing changes when it is kept already).
     pub(in crate::terrain) fn enable_journal(&mut self) {
         if self.journal.is_none() {
@@ -89,7 +98,7 @@ impl Grid {
             Entry::Cell { cell, before, .. } => {
                 if let Some(c) = self.cells.get_mut(cell) {
                     *c = before;
-                    self.lows.forget(cell);
+                    self.forget_bounds(cell);
                 }
             }
             Entry::Brick { id, before } => {
@@ -157,7 +166,7 @@ impl Grid {
         over_cap: bool,
     ) -> Option<&mut Cell> {
         self.recorded_cell = Some(cell);
-        self.lows.forget(cell);
+        self.forget_bounds(cell);
         let c = self.cells.get_mut(cell)?;
         if let Some(j) = &mut self.journal {
             let before = c.clone();
@@ -174,7 +183,7 @@ impl Grid {
     /// started: its pre-image already undoes this edit, so nothing is recorded.
     pub(in crate::terrain) fn edit_recorded_cell(&mut self, cell: usize) -> Option<&mut Cell> {
         self.debug_check_recorded(cell);
-        self.lows.forget(cell);
+        self.forget_bounds(cell);
         self.cells.get_mut(cell)
     }
 
@@ -192,7 +201,7 @@ impl Grid {
     /// freeing (and journaling) a brick it no longer references.
     pub(in crate::terrain) fn set_state(&mut self, cell: usize, state: CellState) {
         self.debug_check_recorded(cell);
-        self.lows.forget(cell);
+        self.forget_bounds(cell);
         let Some(c) = self.cells.get_mut(cell) else {
             return;
         };
@@ -266,6 +275,7 @@ impl Grid {
             c.revision = fresh_revision();
         }
         self.lows.forget_all();
+        self.flats.forget_all();
         self.bricks.clear();
         self.free_bricks.clear();
         self.stats = GridStats::default();
@@ -283,6 +293,7 @@ impl Grid {
         stats: GridStats,
     ) {
         self.lows = CellLows::new(cells.len());
+        self.flats = CellFlats::new(cells.len());
         self.cells = cells;
         self.bricks = bricks;
         self.free_bricks = free_bricks;

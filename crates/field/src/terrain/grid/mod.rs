@@ -18,6 +18,7 @@ use thiserror::Error;
 
 mod cell;
 mod changes;
+mod flats;
 mod floors;
 mod journal;
 mod list;
@@ -25,6 +26,7 @@ mod lows;
 
 pub(crate) use cell::{Brick, Cell, CellStateSlot, PartialBake};
 pub use cell::{CellState, GridStats, MaterialSource};
+pub(crate) use flats::{ALL_SQUARES, CellFlats, FLAT_SIDE, Flats, square_bit};
 pub(crate) use floors::FloorGrid;
 pub(in crate::terrain) use journal::Entry;
 use journal::Journal;
@@ -175,6 +177,8 @@ pub struct Grid {
     cells: Vec<Cell>,
     /// Each cell's lower bound for ray walks, forgotten by every edit of the cell.
     lows: CellLows,
+    /// Each cell's squares flat at the band, forgotten with `lows`.
+    flats: CellFlats,
     bricks: Vec<Brick>,
     free_bricks: Vec<u32>,
     stats: GridStats,
@@ -230,6 +234,7 @@ impl Grid {
             resolution,
             cells: vec![Cell::default(); nx as usize * ny as usize],
             lows: CellLows::new(nx as usize * ny as usize),
+            flats: CellFlats::new(nx as usize * ny as usize),
             bricks: Vec::new(),
             free_bricks: Vec::new(),
             stats: GridStats::default(),
@@ -256,6 +261,14 @@ impl Grid {
     /// The cell holding `p`, or `None` outside the grid (and for NaN).
     #[inline]
     pub fn cell_index(&self, p: Vec2) -> Option<usize> {
+        let (_, (ix, iy)) = self.cell_quotients(p)?;
+        Some(iy as usize * self.nx as usize + ix as usize)
+    }
+
+    /// `p`'s coordinates in cells from the origin, and the column and row of its cell;
+    /// `None` outside the grid (and for NaN).
+    #[inline]
+    fn cell_quotients(&self, p: Vec2) -> Option<((f32, f32), (u32, u32))> {
         let (fx, fy) = match self.inv_pow2 {
             // Dividing by a power of two and multiplying by its (exact) reciprocal round
             // the same exact quotient: the same bits, without a division.
@@ -271,7 +284,22 @@ impl Grid {
         // Non-negative and below nx, ny (exact in f32, both < 2^24): the casts floor.
         let ix = (fx as u32).min(self.nx - 1);
         let iy = (fy as u32).min(self.ny - 1);
-        Some(iy as usize * self.nx as usize + ix as usize)
+        Some(((fx, fy), (ix, iy)))
+    }
+
+    /// [`Grid::cell_index`], and the bit of the square of the cell's [`FLAT_SIDE`] split
+    /// that holds `p` (from the same quotients: the square's real bounds hold `p` up to
+    /// their rounding, which every proof of a square's flatness pads).
+    #[inline]
+    pub(crate) fn cell_and_square(&self, p: Vec2) -> Option<(usize, u64)> {
+        let ((fx, fy), (ix, iy)) = self.cell_quotients(p)?;
+        // In [0, 1] up to rounding (exact where the cell size is a power of two): the
+        // casts floor, the minimum keeps the last square.
+        let side = FLAT_SIDE as f32;
+        let sx = (((fx - ix as f32) * side) as u32).min(FLAT_SIDE - 1);
+        let sy = (((fy - iy as f32) * side) as u32).min(FLAT_SIDE - 1);
+        let cell = iy as usize * self.nx as usize + ix as usize;
+        Some((cell, square_bit(sx, sy)))
     }
 
     /// What [`Grid::cell_index`] computes with, for the same lookup on lanes.
@@ -433,6 +461,11 @@ impl Grid {
     /// Cell `i` as stored, for the terrain's own reads (`None` past the end).
     pub(in crate::terrain) fn stored_cell(&self, i: usize) -> Option<&Cell> {
         self.cells.get(i)
+    }
+
+    /// The cells' flat squares, as far as computed.
+    pub(in crate::terrain) fn cell_flats(&self) -> &CellFlats {
+        &self.flats
     }
 
     /// The cells' lower bounds for ray walks, as far as computed.
