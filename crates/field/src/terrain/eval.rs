@@ -182,9 +182,10 @@ impl<F: Sdf> Terrain<F> {
         (d, mat)
     }
 
-    /// [`Sdf::sample`]: in a grid cell, on values with the gradient of the winning term
-    /// alone ([`Terrain::sample_cell`]); elsewhere, and in a cell whose list blends, on
-    /// duals throughout.
+    /// [`Sdf::sample`]: in a flat square of a grid cell whose state has one material, the
+    /// square's constant ([`Terrain::flat_at`]); elsewhere in a grid cell, on values with
+    /// the gradient of the winning term alone ([`Terrain::sample_cell`]); outside the grid,
+    /// and in a cell whose list blends, on duals throughout.
     fn sample_at(&self, p: Vec2) -> (Dual, MaterialId) {
         if p.x.is_nan() || p.y.is_nan() {
             return self.eval::<Dual, true>(p);
@@ -311,6 +312,9 @@ impl<F: Sdf> Terrain<F> {
         Some((dual, mat, if flat { Term::Flat } else { Term::State }))
     }
 
+    /// The field at `p` on `N`, with the material where `MAT` or `N` wants it: from a flat
+    /// square of its cell where one answers ([`Terrain::flat_at`]), else the cell's state
+    /// and list, or the base outside the grid.
     pub(super) fn eval<N: Lift, const MAT: bool>(&self, p: Vec2) -> (N, MaterialId) {
         if p.x.is_nan() || p.y.is_nan() {
             return (N::constant(f32::NAN), 0);

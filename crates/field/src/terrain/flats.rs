@@ -27,8 +27,9 @@ use crate::sdf::Sdf;
 use crate::tape::MatOut;
 
 impl<F: Sdf> Terrain<F> {
-    /// The band's constant at `p` (in `cell`, in the square of `bit`) and the material
-    /// there if the cell's state has one, where the square is flat.
+    /// Where the square of `bit` (`Grid::cell_and_square`'s) of cell `cell` is flat: the
+    /// band's constant there, and the material if the cell's state has one. Computes the
+    /// cell's squares on its first ask after a change.
     #[inline]
     pub(super) fn flat_at(&self, cell: usize, bit: u64) -> Option<(f32, Option<MaterialId>)> {
         let flats = match self.grid.cell_flats().get(cell) {
