@@ -2,7 +2,8 @@
 //! mesh extraction), on a SIMD backend, cell-coherent.
 //!
 //! Points are grouped by grid cell (a counting sort, or a comparison sort for batches much
-//! smaller than the grid). Each cell's group then runs in lane blocks: the cell's
+//! smaller than the grid). A group's points in a flat square of their cell take its
+//! constant, as on the point path (`super::flats`). The rest of a group runs in lane blocks: the cell's
 //! specialized base tape (or its constant, baked or carved state), the clamp, and the
 //! cell's events, one event at a time across all lanes. Every step mirrors the single-point
 //! path of [`super::Terrain`], so each result has the same bits as [`Sdf::distance`] and
@@ -20,7 +21,7 @@ use crate::sample::{MaterialId, Sample};
 use crate::sdf::Sdf;
 use crate::tape::check;
 use crate::tape::{EvalError, MatOut};
-use crate::terrain::grid::{self, CellState, MaterialSource, Rect};
+use crate::terrain::grid::{self, CellState, FLAT_SIDE, Flats, MaterialSource, Rect};
 use craterfield_core::backend::{Backend, BackendError};
 use craterfield_core::simd::{self, Kernel, Lanes};
 
@@ -35,9 +36,17 @@ struct Group {
     end: usize,
 }
 
-/// Groups point indices by cell, from each point's key (see [`CellKeys`]). NaN points
-/// are left out (their result is fixed).
-fn group(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<Group>) {
+/// A batch's points grouped by cell: the point indices in cell order, the groups, and
+/// each point's flat square in its cell, in the same order (read beside the indices).
+struct Grouped {
+    order: Vec<u32>,
+    groups: Vec<Group>,
+    squares: Vec<u8>,
+}
+
+/// Groups point indices by cell, from each point's key and square (see [`CellKeys`]). NaN
+/// points are left out (their result is fixed).
+fn group(keys: &[u32], squares: &[u8], cells: usize) -> Grouped {
     let group_of = |k: usize, start: usize, end: usize| {
         (k <= cells).then(|| Group {
             cell: (k < cells).then_some(k),
@@ -60,7 +69,12 @@ fn group(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<Group>) {
             groups.extend(group_of(k as usize, start, end));
             start = end;
         }
-        return (order, groups);
+        let squares = order.iter().map(|&i| squares[i as usize]).collect();
+        return Grouped {
+            order,
+            groups,
+            squares,
+        };
     }
     // A counting sort: the keys counted, then placed; each key's range of the order is
     // known from the counts.
@@ -73,15 +87,23 @@ fn group(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<Group>) {
     }
     let starts = counts.clone();
     let mut order = vec![0u32; keys.len()];
-    for (i, &k) in keys.iter().enumerate() {
-        order[counts[k as usize] as usize] = i as u32;
+    // Placed beside the indices: the kernels read both in order.
+    let mut sorted_squares = vec![0u8; keys.len()];
+    for (i, (&k, &square)) in keys.iter().zip(squares).enumerate() {
+        let at = counts[k as usize] as usize;
+        order[at] = i as u32;
+        sorted_squares[at] = square;
         counts[k as usize] += 1;
     }
     let groups = (0..cells + 2)
         .filter(|&k| starts[k + 1] > starts[k])
         .filter_map(|k| group_of(k, starts[k] as usize, starts[k + 1] as usize))
         .collect();
-    (order, groups)
+    Grouped {
+        order,
+        groups,
+        squares: sorted_squares,
+    }
 }
 
 /// A point's grouping key: its cell (`cell`, from [`Grid::cell_index`]), `cells` outside
@@ -96,12 +118,15 @@ fn cell_key(p: Vec2, cell: Option<usize>, cells: usize) -> u32 {
 
 /// Every point's [`cell_key`], the cell found on lanes: `Grid::cell_index`'s arithmetic
 /// (the same roundings, so the same cells), a lane register of points at a time. Looking
-/// the cells up one point at a time was a fifth of a batch of uniform points.
+/// the cells up one point at a time was a fifth of a batch of uniform points. Beside it,
+/// the index of the point's flat square in its cell (`Grid::cell_and_square`'s, the same
+/// roundings; 0 outside the grid).
 struct CellKeys<'a> {
     lookup: grid::Lookup,
     cells: usize,
     points: &'a [Vec2],
     keys: &'a mut [u32],
+    squares: &'a mut [u8],
 }
 
 impl Kernel for CellKeys<'_> {
@@ -117,9 +142,16 @@ impl Kernel for CellKeys<'_> {
             l.splat_i(self.cells as i32),
             l.splat_i(self.cells as i32 + 1),
         );
+        let (side, last_square) = (l.splat(FLAT_SIDE as f32), l.splat((FLAT_SIDE - 1) as f32));
         let w = L::WIDTH;
-        let (mut xs, mut ys, mut ks) = ([0.0f32; 16], [0.0f32; 16], [0i32; 16]);
-        for (pts, out) in self.points.chunks(w).zip(self.keys.chunks_mut(w)) {
+        let (mut xs, mut ys, mut ks, mut ss) = ([0.0f32; 16], [0.0f32; 16], [0i32; 16], [0i32; 16]);
+        let squares = self.squares.chunks_mut(w);
+        for ((pts, out), sq) in self
+            .points
+            .chunks(w)
+            .zip(self.keys.chunks_mut(w))
+            .zip(squares)
+        {
             for (k, p) in pts.iter().enumerate() {
                 (xs[k], ys[k]) = (p.x, p.y);
             }
@@ -141,6 +173,15 @@ impl Kernel for CellKeys<'_> {
             l.store_i(key, &mut ks);
             for (o, &k) in out.iter_mut().zip(&ks) {
                 *o = k as u32;
+            }
+            // In [0, 1) up to rounding: the floor is the cast's truncation, the minimum
+            // keeps the last square.
+            let sx = l.min(l.floor(l.mul(l.sub(fx, ix), side)), last_square);
+            let sy = l.min(l.floor(l.mul(l.sub(fy, iy), side)), last_square);
+            let square = l.to_i32(l.add(l.mul(sy, side), sx));
+            l.store_i(l.select_i(inside, square, l.splat_i(0)), &mut ss);
+            for (o, &k) in sq.iter_mut().zip(&ss) {
+                *o = k as u8;
             }
         }
     }
@@ -199,11 +240,9 @@ impl<F: Sdf> Terrain<F> {
 
     /// Distances at `points` into `out`, bit-identical to [`Sdf::distance`] at each point.
     pub fn distances(&self, points: &[Vec2], out: &mut [f32]) -> Result<(), EvalError> {
-        let Some((cell_tapes, order, groups)) = self.batch(points, out, |p| self.distance(p))?
-        else {
+        let Some((cell_tapes, grouped)) = self.batch(points, out, |p| self.distance(p))? else {
             return Ok(());
         };
-        let (order, groups) = (&order, &groups);
         let t = self;
         simd::run(
             self.backend,
@@ -211,8 +250,7 @@ impl<F: Sdf> Terrain<F> {
                 t,
                 cell_tapes,
                 points,
-                order,
-                groups,
+                grouped: &grouped,
                 out,
             },
         )?;
@@ -221,10 +259,9 @@ impl<F: Sdf> Terrain<F> {
 
     /// Samples at `points` into `out`, bit-identical to [`Sdf::sample`] at each point.
     pub fn samples(&self, points: &[Vec2], out: &mut [Sample]) -> Result<(), EvalError> {
-        let Some((cell_tapes, order, groups)) = self.batch(points, out, |p| self.sample(p))? else {
+        let Some((cell_tapes, grouped)) = self.batch(points, out, |p| self.sample(p))? else {
             return Ok(());
         };
-        let (order, groups) = (&order, &groups);
         let t = self;
         simd::run(
             self.backend,
@@ -232,8 +269,7 @@ impl<F: Sdf> Terrain<F> {
                 t,
                 cell_tapes,
                 points,
-                order,
-                groups,
+                grouped: &grouped,
                 out,
             },
         )?;
@@ -284,13 +320,12 @@ impl<F: Sdf> Terrain<F> {
     /// answered one point at a time too (the same bits): a block of lanes applies a busy
     /// cell's whole event list for every lane, used or not, which for one scattered
     /// point (a body's probe) cost several times the point path.
-    #[allow(clippy::type_complexity)]
     fn batch<T>(
         &self,
         points: &[Vec2],
         out: &mut [T],
         single: impl Fn(Vec2) -> T,
-    ) -> Result<Option<(&CellTapes, Vec<u32>, Vec<Group>)>, EvalError> {
+    ) -> Result<Option<(&CellTapes, Grouped)>, EvalError> {
         check(points.len(), out.len())?;
         let Some(cell_tapes) = &self.cell_tapes else {
             for (o, &p) in out.iter_mut().zip(points) {
@@ -303,8 +338,9 @@ impl<F: Sdf> Terrain<F> {
                 *o = single(p);
             }
         }
-        let (order, mut groups) = self.group(points);
-        groups.retain(|g| {
+        let mut grouped = self.group(points);
+        let order = &grouped.order;
+        grouped.groups.retain(|g| {
             let sparse = g.end - g.start < SPARSE;
             if sparse {
                 for &i in &order[g.start..g.end] {
@@ -313,25 +349,29 @@ impl<F: Sdf> Terrain<F> {
             }
             !sparse
         });
-        Ok(Some((cell_tapes, order, groups)))
+        Ok(Some((cell_tapes, grouped)))
     }
 
-    fn group(&self, points: &[Vec2]) -> (Vec<u32>, Vec<Group>) {
+    fn group(&self, points: &[Vec2]) -> Grouped {
         let cells = self.grid.cell_count();
         let mut keys = vec![0u32; points.len()];
+        let mut squares = vec![0u8; points.len()];
         let kernel = CellKeys {
             lookup: self.grid.lookup(),
             cells,
             points,
             keys: &mut keys,
+            squares: &mut squares,
         };
         if simd::run(self.backend, kernel).is_err() {
             // The backend was checked when it was set; this is the same lookup, per point.
-            for (k, &p) in keys.iter_mut().zip(points) {
-                *k = cell_key(p, self.grid.cell_index(p), cells);
+            for ((k, s), &p) in keys.iter_mut().zip(&mut squares).zip(points) {
+                let found = self.grid.cell_and_square(p);
+                *k = cell_key(p, found.map(|(c, _)| c), cells);
+                *s = found.map_or(0, |(_, bit)| bit.trailing_zeros() as u8);
             }
         }
-        group(&keys, cells)
+        group(&keys, &squares, cells)
     }
 
     /// How a group's lanes start (state and base).
@@ -429,16 +469,61 @@ fn events_reaching(events: &[Prepared], pts: &[Vec2], band: f32, out: &mut Vec<P
 fn reaching_block<'e>(
     events: &'e [Prepared],
     pts: &[Vec2],
-    g: &Group,
+    group_len: usize,
     step: usize,
     band: f32,
     reaching: &'e mut Vec<Prepared>,
 ) -> &'e [Prepared] {
-    if g.end - g.start > step {
+    if group_len > step {
         return events;
     }
     events_reaching(events, pts, band, reaching);
     reaching
+}
+
+/// Flat squares a cell needs before its group is split (of 64): below it, most points
+/// of a group take the lanes anyway, and the split's pass costs more than it saves.
+const FLAT_SQUARES_WORTH_SORTING: u32 = 8;
+
+/// Whether a group in a cell with `flats` is split into points in flat squares and the
+/// others ([`unflat_members`]).
+fn worth_sorting(flats: Flats) -> bool {
+    (flats.top | flats.bottom).count_ones() >= FLAT_SQUARES_WORTH_SORTING
+}
+
+/// Writes the answer of a flat square (`top` or `bottom`) for the members of a group
+/// (point indices, with their squares beside them) in a flat square of `flats`, and
+/// returns the others, in order (the front of `unflat`). Branch-free, since a point's
+/// square is flat about at random: the flat points are gathered (`flat`, with whether
+/// they are at the bottom) and written after, so that a point the lanes answer is
+/// written once. The scratch vectors only grow, so a group pays no clearing.
+fn unflat_members<'s, T: Copy>(
+    members: &[u32],
+    squares: &[u8],
+    flats: Flats,
+    (top, bottom): (T, T),
+    out: &mut [T],
+    (unflat, flat): (&'s mut Vec<u32>, &mut Vec<(u32, bool)>),
+) -> &'s [u32] {
+    let n = members.len();
+    if unflat.len() < n {
+        unflat.resize(n, 0);
+        flat.resize(n, (0, false));
+    }
+    let any = flats.top | flats.bottom;
+    let (mut kept, mut found) = (0, 0);
+    for (&i, &square) in members.iter().zip(squares) {
+        let bit = 1u64 << (square & 63);
+        let is_flat = any & bit != 0;
+        unflat[kept] = i;
+        kept += usize::from(!is_flat);
+        flat[found] = (i, flats.bottom & bit != 0);
+        found += usize::from(is_flat);
+    }
+    for &(i, at_bottom) in &flat[..found] {
+        out[i as usize] = if at_bottom { bottom } else { top };
+    }
+    &unflat[..kept]
 }
 
 /// Gathers the points of one block of a group.
@@ -451,8 +536,7 @@ struct Distances<'a, F: Sdf> {
     t: &'a Terrain<F>,
     cell_tapes: &'a CellTapes,
     points: &'a [Vec2],
-    order: &'a [u32],
-    groups: &'a [Group],
+    grouped: &'a Grouped,
     out: &'a mut [f32],
 }
 
@@ -467,15 +551,32 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
         let mut lanes = [0.0f32; 16];
         let mut events = Vec::new();
         let mut reaching = Vec::new();
+        let (mut unflat, mut flat) = (Vec::new(), Vec::new());
         let step = NB * L::WIDTH;
-        for g in self.groups {
+        let (order, squares) = (&self.grouped.order, &self.grouped.squares);
+        for g in &self.grouped.groups {
             let start = t.start(self.cell_tapes, g.cell, false);
             if start.is_top(band) && t.lists_carves_only(g.cell) {
                 // Carves leave the band's top as it is: the list need not be read.
-                for &i in &self.order[g.start..g.end] {
+                for &i in &order[g.start..g.end] {
                     self.out[i as usize] = band;
                 }
                 continue;
+            }
+            let mut members = &order[g.start..g.end];
+            if let Some(cell) = g.cell {
+                // Points in a flat square take its constant, as the point path answers
+                // them; the lanes work the others.
+                let flats = t.flats(cell);
+                if worth_sorting(flats) {
+                    let squares = &squares[g.start..g.end];
+                    let answers = (band, -band);
+                    let scratch = (&mut unflat, &mut flat);
+                    members = unflat_members(members, squares, flats, answers, self.out, scratch);
+                }
+                if members.is_empty() {
+                    continue;
+                }
             }
             t.prepared_events(g.cell, &mut events);
             if events.is_empty() {
@@ -487,13 +588,13 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
                     Start::Brick(_) => None,
                 };
                 if let Some(c) = constant {
-                    for &i in &self.order[g.start..g.end] {
+                    for &i in members {
                         self.out[i as usize] = c;
                     }
                     continue;
                 }
             }
-            for idx in self.order[g.start..g.end].chunks(step) {
+            for idx in members.chunks(step) {
                 gather(self.points, idx, &mut pts);
                 let mut ps = [P2::new(Fv::cst(l, 0.0), Fv::cst(l, 0.0)); NB];
                 for (r, p) in ps.iter_mut().enumerate() {
@@ -520,7 +621,8 @@ impl<F: Sdf> Kernel for Distances<'_, F> {
                     }
                 }
                 let mut mats = [l.splat_i(0); NB];
-                let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
+                let events =
+                    reaching_block(&events, &pts, members.len(), step, band, &mut reaching);
                 apply_values(l, events, &mut ds, &mut mats, &ps, band, NB);
                 for (r, d) in ds.iter().enumerate() {
                     l.store(d.0, &mut lanes);
@@ -537,8 +639,7 @@ struct Samples<'a, F: Sdf> {
     t: &'a Terrain<F>,
     cell_tapes: &'a CellTapes,
     points: &'a [Vec2],
-    order: &'a [u32],
-    groups: &'a [Group],
+    grouped: &'a Grouped,
     out: &'a mut [Sample],
 }
 
@@ -554,17 +655,39 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
         let mut mat_lanes = [0i32; 16];
         let mut events = Vec::new();
         let mut reaching = Vec::new();
+        let (mut unflat, mut flat) = (Vec::new(), Vec::new());
         let step = NB * L::WIDTH;
-        for g in self.groups {
+        let (order, squares) = (&self.grouped.order, &self.grouped.squares);
+        for g in &self.grouped.groups {
+            let mut members = &order[g.start..g.end];
+            if let Some(cell) = g.cell {
+                // As the point path: a flat square answers where the state has one
+                // material, with a zero gradient.
+                let flats = t.flats(cell);
+                if let (Some(material), true) = (flats.material, worth_sorting(flats)) {
+                    let answer = |distance| Sample {
+                        distance,
+                        gradient: Vec2::ZERO,
+                        material,
+                    };
+                    let answers = (answer(band), answer(-band));
+                    let squares = &squares[g.start..g.end];
+                    let scratch = (&mut unflat, &mut flat);
+                    members = unflat_members(members, squares, flats, answers, self.out, scratch);
+                }
+                if members.is_empty() {
+                    continue;
+                }
+            }
             let start = t.start(self.cell_tapes, g.cell, true);
             t.prepared_events(g.cell, &mut events);
             if let Some(s) = constant_sample(&start, events.is_empty(), band) {
-                for &i in &self.order[g.start..g.end] {
+                for &i in members {
                     self.out[i as usize] = s;
                 }
                 continue;
             }
-            for idx in self.order[g.start..g.end].chunks(step) {
+            for idx in members.chunks(step) {
                 gather(self.points, idx, &mut pts);
                 let mut ps = [P2::new(Dv::cst(l, 0.0), Dv::cst(l, 0.0)); NB];
                 for (r, p) in ps.iter_mut().enumerate() {
@@ -572,7 +695,8 @@ impl<F: Sdf> Kernel for Samples<'_, F> {
                 }
                 let (mut ds, mut mats) =
                     start_with_materials(l, t, &start, g.cell, &mut block, &pts, &ps, NB);
-                let events = reaching_block(&events, &pts, g, step, band, &mut reaching);
+                let events =
+                    reaching_block(&events, &pts, members.len(), step, band, &mut reaching);
                 if !apply_sharp_carves(l, events, &mut ds, &ps, band, NB) {
                     for e in events {
                         for r in 0..NB {
@@ -1058,10 +1182,10 @@ mod tests {
     use super::*;
     use crate::terrain::grid::Grid;
 
-    /// On every backend the lanes find each point the cell `Grid::cell_index` finds: on cell
-    /// edges and one ulp either side, at the grid's edges, outside, and for NaN and
-    /// infinities, with a power-of-two cell size (multiplied by its inverse) and another
-    /// (divided).
+    /// On every backend the lanes find each point the cell `Grid::cell_index` finds and the
+    /// flat square `Grid::cell_and_square` finds: on cell and square sides and one ulp
+    /// either side, at the grid's edges, outside, and for NaN and infinities, with a
+    /// power-of-two cell size (multiplied by its inverse) and another (divided).
     #[test]
     fn lane_keys_are_the_point_lookups() {
         let mut unit_f64 = crate::test_rng::unit_f64(0x2545_f491_4f6c_dd1d);
@@ -1081,9 +1205,11 @@ mod tests {
                 Vec2::new(-1e30, 1e30),
                 origin,
             ];
-            for i in 0..=nx {
-                for j in [0, ny / 2, ny] {
-                    let edge = origin + Vec2::new(i as f32, j as f32) * size;
+            // Cell sides and the flat squares' sides between them, and a unit beside each.
+            let eighths = |n: u32| (0..=n * 8).map(|k| k as f32 / 8.0);
+            for i in eighths(nx) {
+                for j in [0.0, (ny / 2) as f32 + 0.375, ny as f32] {
+                    let edge = origin + Vec2::new(i, j) * size;
                     for d in [-1i32, 0, 1] {
                         let nudge = |v: f32| f32::from_bits((v.to_bits() as i32 + d) as u32);
                         points.push(Vec2::new(nudge(edge.x), edge.y));
@@ -1095,20 +1221,30 @@ mod tests {
                 points.push(origin + Vec2::new(unit() * 4200.0 - 100.0, unit() * 1200.0 - 100.0));
             }
             let cells = grid.cell_count();
-            let expected: Vec<u32> = (points.iter())
-                .map(|&p| cell_key(p, grid.cell_index(p), cells))
+            let expected: Vec<(u32, u8)> = (points.iter())
+                .map(|&p| {
+                    let found = grid.cell_and_square(p);
+                    let square = found.map_or(0, |(_, bit)| bit.trailing_zeros() as u8);
+                    (cell_key(p, grid.cell_index(p), cells), square)
+                })
                 .collect();
+            let squares_seen: std::collections::HashSet<u8> =
+                expected.iter().map(|&(_, s)| s).collect();
+            assert_eq!(squares_seen.len(), 64, "every square of a cell is tried");
             for backend in Backend::available() {
                 let mut keys = vec![u32::MAX; points.len()];
+                let mut squares = vec![u8::MAX; points.len()];
                 let kernel = CellKeys {
                     lookup: grid.lookup(),
                     cells,
                     points: &points,
                     keys: &mut keys,
+                    squares: &mut squares,
                 };
                 simd::run(backend, kernel).expect("an available backend");
-                for (k, (got, want)) in keys.iter().zip(&expected).enumerate() {
-                    assert_eq!(got, want, "{backend}: point {:?} (size {size})", points[k]);
+                let got = keys.iter().zip(&squares).map(|(&k, &s)| (k, s));
+                for (k, (got, want)) in got.zip(&expected).enumerate() {
+                    assert_eq!(got, *want, "{backend}: point {:?} (size {size})", points[k]);
                 }
             }
         }

@@ -660,8 +660,8 @@ pub(super) mod tests {
                     }
                 }
             }
-            // Batches do not read the squares (their lanes run the tape and clamp): the
-            // single points' constants must be those bits too.
+            // Batches answer from the flat squares where the point path does and run the
+            // tape and clamp on lanes elsewhere: the same bits as the single points'.
             let mut batch = vec![0.0; lattice.len()];
             t.distances(&lattice, &mut batch).unwrap();
             for (p, d) in lattice.iter().zip(&batch) {

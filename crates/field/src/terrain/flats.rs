@@ -32,10 +32,7 @@ impl<F: Sdf> Terrain<F> {
     /// cell's squares on its first ask after a change.
     #[inline]
     pub(super) fn flat_at(&self, cell: usize, bit: u64) -> Option<(f32, Option<MaterialId>)> {
-        let flats = match self.grid.cell_flats().get(cell) {
-            Some(f) => f,
-            None => self.compute_flats(cell),
-        };
+        let flats = self.flats(cell);
         let band = self.options.band;
         if flats.top & bit != 0 {
             Some((band, flats.material))
@@ -43,6 +40,15 @@ impl<F: Sdf> Terrain<F> {
             Some((-band, flats.material))
         } else {
             None
+        }
+    }
+
+    /// Cell `cell`'s flat squares, computed on the first ask after a change.
+    #[inline]
+    pub(super) fn flats(&self, cell: usize) -> Flats {
+        match self.grid.cell_flats().get(cell) {
+            Some(f) => f,
+            None => self.compute_flats(cell),
         }
     }
 
