@@ -3,11 +3,12 @@
 //!
 //! Points are grouped by grid cell (a counting sort, or a comparison sort for batches much
 //! smaller than the grid). A group's points in a flat square of their cell take its
-//! constant, as on the point path (`super::flats`). The rest of a group runs in lane blocks: the cell's
-//! specialized base tape (or its constant, baked or carved state), the clamp, and the
-//! cell's events, one event at a time across all lanes. Every step mirrors the single-point
-//! path of [`super::Terrain`], so each result has the same bits as [`Sdf::distance`] and
-//! [`Sdf::sample`] at that point, whatever the backend, batch size or order.
+//! constant, as on the point path (`super::flats`). The rest of a group runs in lane
+//! blocks: the cell's specialized base tape (or its constant, baked or carved state), the
+//! clamp, and the cell's events, one event at a time across all lanes. Every step mirrors
+//! the single-point path of [`super::Terrain`], so each result has the same bits as
+//! [`Sdf::distance`] and [`Sdf::sample`] at that point, whatever the backend, batch size
+//! or order.
 
 use glam::Vec2;
 
